@@ -1,0 +1,44 @@
+#pragma once
+// Pinhole camera with radial-tangential distortion (OpenCV's plumb-bob model: k1, k2, p1, p2, k3).
+#include <array>
+
+#include <Eigen/Core>
+
+namespace bmp {
+
+struct CameraIntrinsics {
+  int width = 640;
+  int height = 480;
+  double fx = 525.0;
+  double fy = 525.0;
+  double cx = 319.5;
+  double cy = 239.5;
+  std::array<double, 5> distortion{0, 0, 0, 0, 0};  // k1, k2, p1, p2, k3
+  double depth_scale = 5000.0;                      // raw depth units per metre
+};
+
+class CameraModel {
+ public:
+  explicit CameraModel(const CameraIntrinsics& intrinsics);
+
+  const CameraIntrinsics& intrinsics() const { return k_; }
+  bool hasDistortion() const { return distorted_; }
+
+  // Normalised undistorted coordinates -> distorted pixel.
+  Eigen::Vector2d distortNormalized(const Eigen::Vector2d& xy) const;
+  // Distorted pixel -> undistorted pixel (iterative inversion of the distortion).
+  Eigen::Vector2d undistortPixel(const Eigen::Vector2d& uv) const;
+  // A point in the camera frame (z forward) -> distorted pixel. z must be positive.
+  Eigen::Vector2d project(const Eigen::Vector3d& p_cam) const;
+  // Ideal (undistorted) pinhole projection.
+  Eigen::Vector2d projectPinhole(const Eigen::Vector3d& p_cam) const;
+  // An undistorted pixel and depth (metres) -> point in the camera frame.
+  Eigen::Vector3d backProject(const Eigen::Vector2d& uv_undistorted, double depth) const;
+  bool inImage(const Eigen::Vector2d& uv, double border = 0.0) const;
+
+ private:
+  CameraIntrinsics k_;
+  bool distorted_;
+};
+
+}  // namespace bmp

@@ -1,0 +1,29 @@
+#pragma once
+// Trajectories in the TUM RGB-D format: "timestamp tx ty tz qx qy qz qw" per line, '#' comments.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bmp/common/se3.hpp"
+
+namespace bmp {
+
+struct StampedPose {
+  double stamp = 0.0;  // seconds
+  SE3 T_world_cam = SE3::Identity();
+};
+using Trajectory = std::vector<StampedPose>;
+
+class TrajectoryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Accepts spaces, tabs or commas as separators (as the TUM scripts do). Throws TrajectoryError naming
+// file and line for a malformed line; the result is sorted by time.
+Trajectory readTumTrajectory(const std::string& path);
+Trajectory parseTumTrajectory(const std::string& text, const std::string& origin);
+void writeTumTrajectory(const std::string& path, const Trajectory& trajectory);
+std::string formatTumLine(const StampedPose& pose);
+
+}  // namespace bmp

@@ -1,0 +1,25 @@
+#pragma once
+// Between LCM messages and the library types of common/.
+#include <bmp/camera_t.hpp>
+#include <bmp/image_t.hpp>
+#include <bmp/pose_t.hpp>
+
+#include "bmp/common/camera_model.hpp"
+#include "bmp/common/image_codec.hpp"
+#include "bmp/common/se3.hpp"
+
+namespace bmp {
+
+pose_t toMsg(const SE3& T);
+SE3 fromMsg(const pose_t& msg);  // normalises the quaternion
+
+camera_t toMsg(const CameraIntrinsics& k);
+// depth_scale is not part of camera_t: it travels beside it in the frame.
+CameraIntrinsics fromMsg(const camera_t& msg, double depth_scale);
+
+image_t toMsg(const EncodedImage& image);
+image_t toMsg(EncodedImage&& image);
+// Throws ImageError when the message's encoding or pixel format is not one we know.
+EncodedImage fromMsg(const image_t& msg);
+
+}  // namespace bmp

@@ -1,0 +1,96 @@
+#pragma once
+// One LCM connection with typed publish and subscribe. Subscriptions decode by hand, so a malformed message
+// from another publisher is counted and reported (channel, size, reason) instead of silently dropped.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+namespace bmp {
+
+// The URL every process uses unless told otherwise. The 4 MiB receive buffer keeps 640x480 frames from
+// being dropped by the kernel.
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+// --lcm-url if given, else $LCM_DEFAULT_URL, else kDefaultLcmUrl.
+std::string resolveLcmUrl(const std::string& command_line_url);
+
+class LcmError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ReceivedInfo {
+  std::string channel;
+  int64_t recv_utime = 0;  // when LCM received it, microseconds
+  std::size_t size = 0;    // encoded bytes
+};
+
+class LcmNode {
+ public:
+  using WarningSink = std::function<void(const std::string&)>;
+
+  // Throws LcmError naming the URL when LCM cannot open it.
+  explicit LcmNode(const std::string& url, WarningSink warn = nullptr);
+  ~LcmNode();
+  LcmNode(const LcmNode&) = delete;
+  LcmNode& operator=(const LcmNode&) = delete;
+
+  template <typename Msg>
+  void publish(const std::string& channel, const Msg& msg) {
+    if (lcm_.publish(channel, &msg) != 0) throw LcmError("publish on " + channel + " failed");
+  }
+
+  // Calls handler for each message on channel that decodes as Msg.
+  template <typename Msg>
+  void subscribe(const std::string& channel, std::function<void(const Msg&, const ReceivedInfo&)> handler) {
+    auto sub = std::make_unique<Subscriber<Msg>>(this, std::move(handler));
+    lcm::Subscription* s = lcm_.subscribe(channel, &Subscriber<Msg>::onMessage, sub.get());
+    s->setQueueCapacity(queue_capacity_);
+    subscribers_.push_back(std::move(sub));
+  }
+
+  // Waits up to timeout_ms for messages and dispatches them; returns false on an LCM error.
+  bool handle(int timeout_ms);
+  // Messages that did not decode, over all subscriptions.
+  int64_t malformedCount() const { return malformed_; }
+  const std::string& url() const { return url_; }
+  lcm::LCM& raw() { return lcm_; }
+  // Messages LCM may queue per subscription before it drops the oldest (default 30).
+  void setQueueCapacity(int capacity) { queue_capacity_ = capacity; }
+
+ private:
+  struct SubscriberBase {
+    virtual ~SubscriberBase() = default;
+  };
+  template <typename Msg>
+  struct Subscriber : SubscriberBase {
+    Subscriber(LcmNode* node, std::function<void(const Msg&, const ReceivedInfo&)> fn)
+        : node(node), handler(std::move(fn)) {}
+    void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+      Msg msg;
+      const int status = msg.decode(rbuf->data, 0, rbuf->data_size);
+      if (status < 0 || static_cast<uint32_t>(status) != rbuf->data_size) {
+        node->reportMalformed(channel, rbuf->data_size, Msg::getTypeName(), status < 0);
+        return;
+      }
+      handler(msg, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+    }
+    LcmNode* node;
+    std::function<void(const Msg&, const ReceivedInfo&)> handler;
+  };
+  void reportMalformed(const std::string& channel, uint32_t size, const char* type, bool undecodable);
+
+  std::string url_;
+  lcm::LCM lcm_;
+  WarningSink warn_;
+  int64_t malformed_ = 0;
+  int queue_capacity_ = 30;
+  std::vector<std::unique_ptr<SubscriberBase>> subscribers_;
+};
+
+}  // namespace bmp

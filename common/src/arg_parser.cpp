@@ -1,0 +1,109 @@
+#include "bmp/common/arg_parser.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+namespace bmp {
+
+ArgParser::ArgParser(std::string program, std::string summary)
+    : program_(std::move(program)), summary_(std::move(summary)) {
+  addFlag("help", "print this help and exit");
+}
+
+void ArgParser::addFlag(const std::string& name, const std::string& help) {
+  if (!options_.count(name)) order_.push_back(name);
+  options_[name] = Option{"", help, "", false, ""};
+}
+
+void ArgParser::addOption(const std::string& name, const std::string& metavar, const std::string& help,
+                          const std::string& default_value) {
+  if (!options_.count(name)) order_.push_back(name);
+  options_[name] = Option{metavar, help, default_value, false, ""};
+}
+
+bool ArgParser::parse(int argc, const char* const* argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0)
+      throw ArgError(program_ + ": unexpected argument '" + arg + "' (see --help)");
+    std::string name = arg.substr(2);
+    std::string inline_value;
+    bool has_inline = false;
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      inline_value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_inline = true;
+    }
+    auto it = options_.find(name);
+    if (it == options_.end()) throw ArgError(program_ + ": unknown option '--" + name + "' (see --help)");
+    Option& opt = it->second;
+    opt.given = true;
+    if (opt.metavar.empty()) {
+      if (has_inline) throw ArgError(program_ + ": option '--" + name + "' takes no value");
+      continue;
+    }
+    if (has_inline) {
+      opt.value = inline_value;
+    } else {
+      if (i + 1 >= argc) throw ArgError(program_ + ": option '--" + name + "' needs a value " + opt.metavar);
+      opt.value = argv[++i];
+    }
+  }
+  return !flag("help");
+}
+
+const ArgParser::Option& ArgParser::find(const std::string& name) const {
+  auto it = options_.find(name);
+  if (it == options_.end()) throw ArgError(program_ + ": internal: option '" + name + "' was never declared");
+  return it->second;
+}
+
+bool ArgParser::flag(const std::string& name) const {
+  return find(name).given;
+}
+bool ArgParser::given(const std::string& name) const {
+  return find(name).given;
+}
+
+std::string ArgParser::value(const std::string& name) const {
+  const Option& opt = find(name);
+  return opt.given ? opt.value : opt.default_value;
+}
+
+double ArgParser::number(const std::string& name) const {
+  const std::string text = value(name);
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0')
+    throw ArgError(program_ + ": --" + name + " must be a number, got '" + text + "'");
+  return v;
+}
+
+long long ArgParser::integer(const std::string& name) const {
+  const std::string text = value(name);
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0')
+    throw ArgError(program_ + ": --" + name + " must be an integer, got '" + text + "'");
+  return v;
+}
+
+std::string ArgParser::help() const {
+  std::ostringstream out;
+  out << "Usage: " << program_ << " [options]\n\n" << summary_ << "\n\nOptions:\n";
+  for (const auto& name : order_) {
+    const Option& opt = options_.at(name);
+    std::string left = "  --" + name + (opt.metavar.empty() ? "" : " " + opt.metavar);
+    if (left.size() < 30)
+      left.resize(30, ' ');
+    else
+      left += "\n" + std::string(30, ' ');
+    out << left << opt.help;
+    if (!opt.default_value.empty()) out << " (default: " << opt.default_value << ")";
+    out << "\n";
+  }
+  if (!epilog_.empty()) out << "\n" << epilog_ << (epilog_.back() == '\n' ? "" : "\n");
+  return out.str();
+}
+
+}  // namespace bmp

@@ -1,0 +1,151 @@
+#include "bmp/lcm/process.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include <bmp/process_status_t.hpp>
+
+#include "bmp/common/log.hpp"
+
+#ifndef BMP_SOURCE_CONFIG_DIR
+#define BMP_SOURCE_CONFIG_DIR "config"
+#endif
+
+namespace bmp {
+
+namespace {
+std::atomic<int> g_stop_signal{0};  // written by the signal handler only
+struct sigaction g_previous_int {};
+struct sigaction g_previous_term {};
+
+extern "C" void onStopSignal(int signo) {
+  g_stop_signal.store(signo);
+}
+}  // namespace
+
+StopSignal::StopSignal() {
+  g_stop_signal.store(0);
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, &g_previous_int);
+  sigaction(SIGTERM, &action, &g_previous_term);
+}
+
+StopSignal::~StopSignal() {
+  sigaction(SIGINT, &g_previous_int, nullptr);
+  sigaction(SIGTERM, &g_previous_term, nullptr);
+}
+
+bool StopSignal::requested() const {
+  return g_stop_signal.load() != 0;
+}
+int StopSignal::signalNumber() const {
+  return g_stop_signal.load();
+}
+void StopSignal::request() {
+  g_stop_signal.store(-1);
+}
+
+int64_t nowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+StatusReporter::StatusReporter(LcmNode& lcm, std::string name, std::string channel)
+    : lcm_(lcm), name_(std::move(name)), channel_(std::move(channel)), last_utime_(nowUtime()) {}
+
+void StatusReporter::publish(int8_t state) {
+  const int64_t now = nowUtime();
+  const double seconds = std::max(1e-6, static_cast<double>(now - last_utime_) * 1e-6);
+  process_status_t msg;
+  msg.utime = now;
+  msg.name = name_;
+  msg.pid = static_cast<int32_t>(getpid());
+  msg.state = state;
+  msg.input_rate_hz = static_cast<float>(static_cast<double>(received_ - last_received_) / seconds);
+  msg.output_rate_hz = static_cast<float>(static_cast<double>(published_ - last_published_) / seconds);
+  msg.received = received_;
+  msg.processed = processed_;
+  msg.dropped = dropped_;
+  msg.malformed = malformed_ + lcm_.malformedCount();
+  msg.message = message_;
+  lcm_.publish(channel_, msg);
+  last_utime_ = now;
+  last_received_ = received_;
+  last_published_ = published_;
+}
+
+void StatusReporter::tick(bool force) {
+  if (force || nowUtime() - last_utime_ >= 1000000) publish(process_status_t::STATE_RUNNING);
+}
+
+void StatusReporter::finish() {
+  publish(process_status_t::STATE_FINISHED);
+}
+
+void finishConfig(const ProcessContext& context) {
+  context.config.finish();
+  for (const auto& line : context.config.effectiveValues()) log::info("  config ", line);
+}
+
+std::string configDir() {
+  if (const char* env = std::getenv("BMP_CONFIG_DIR"); env != nullptr && *env != '\0') return env;
+  if (std::filesystem::is_directory(BMP_SOURCE_CONFIG_DIR)) return BMP_SOURCE_CONFIG_DIR;
+  return "config";
+}
+
+int runProcess(int argc, char** argv, const ProcessSpec& spec) {
+  ArgParser args(spec.name, spec.summary);
+  const std::string default_config =
+      spec.default_config.empty() ? "" : configDir() + "/" + spec.default_config;
+  args.addOption("config", "FILE", "YAML configuration", default_config);
+  args.addOption("lcm-url", "URL",
+                 "LCM provider URL; else $LCM_DEFAULT_URL, else " + std::string(kDefaultLcmUrl));
+  args.addFlag("print-config", "print every effective configuration value at start-up");
+  if (spec.add_options) spec.add_options(args);
+  try {
+    if (!args.parse(argc, argv)) {
+      std::cout << args.help();
+      return 0;
+    }
+  } catch (const ArgError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+
+  try {
+    const std::string config_path = args.value("config");
+    Config config =
+        config_path.empty() ? Config::empty("(no configuration file)") : Config::fromFile(config_path);
+    const std::string url = resolveLcmUrl(args.value("lcm-url"));
+    LcmNode lcm(url);
+    StopSignal stop;
+    StatusReporter status(lcm, spec.name);
+    log::info(spec.name, " starting (pid ", getpid(), ", config ", config.origin(), ", LCM ", url, ")");
+    ProcessContext context{args, config, lcm, stop, status};
+    const int code = spec.run(context);
+    status.finish();
+    log::info(spec.name, " stopped",
+              stop.signalNumber() > 0 ? " on signal " + std::to_string(stop.signalNumber()) : "",
+              ", exit code ", code);
+    return code;
+  } catch (const ConfigError& e) {
+    log::error(spec.name, ": configuration error: ", e.what());
+    return 2;
+  } catch (const ArgError& e) {
+    log::error(e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    log::error(spec.name, ": ", e.what());
+    return 1;
+  }
+}
+
+}  // namespace bmp

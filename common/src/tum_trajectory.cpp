@@ -1,0 +1,71 @@
+#include "bmp/common/tum_trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace bmp {
+
+Trajectory parseTumTrajectory(const std::string& text, const std::string& origin) {
+  Trajectory out;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::replace(line.begin(), line.end(), '\t', ' ');
+    const auto first = line.find_first_not_of(" \r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    double v[8];
+    int n = 0;
+    while (n < 8 && fields >> v[n]) ++n;
+    std::string extra;
+    if (n != 8 || (fields >> extra)) {
+      throw TrajectoryError(origin + ":" + std::to_string(line_no) +
+                            ": expected 'timestamp tx ty tz qx qy qz qw', got '" + line + "'");
+    }
+    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+    bool finite = true;
+    for (double x : v) finite = finite && std::isfinite(x);
+    if (!finite || std::abs(q.norm() - 1.0) > 0.1) {
+      throw TrajectoryError(origin + ":" + std::to_string(line_no) +
+                            ": not a valid pose (non-finite value or "
+                            "quaternion far from unit length): '" +
+                            line + "'");
+    }
+    out.push_back({v[0], makeSE3({v[1], v[2], v[3]}, q)});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.stamp < b.stamp; });
+  return out;
+}
+
+Trajectory readTumTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw TrajectoryError(path + ": cannot open trajectory file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseTumTrajectory(text.str(), path);
+}
+
+std::string formatTumLine(const StampedPose& pose) {
+  const Eigen::Vector3d t = pose.T_world_cam.translation();
+  const Eigen::Quaterniond q(pose.T_world_cam.linear());
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f", pose.stamp, t.x(), t.y(),
+                t.z(), q.x(), q.y(), q.z(), q.w());
+  return buffer;
+}
+
+void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
+  std::ofstream out(path);
+  if (!out) throw TrajectoryError(path + ": cannot write trajectory file");
+  out << "# timestamp tx ty tz qx qy qz qw\n";
+  for (const auto& pose : trajectory) out << formatTumLine(pose) << "\n";
+  if (!out) throw TrajectoryError(path + ": write failed");
+}
+
+}  // namespace bmp

@@ -1,0 +1,37 @@
+#pragma once
+// Paths to ../shared (read in place, never copied) and to the repository, for tests.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace bmp::test {
+
+inline std::string sharedDir() {
+  if (const char* env = std::getenv("BMP_SHARED"); env != nullptr && *env != '\0') return env;
+  return BMP_SHARED_DIR_DEFAULT;
+}
+inline std::string sharedPath(const std::string& relative) {
+  return sharedDir() + "/" + relative;
+}
+inline std::string bonnDir() {
+  return sharedPath("data/rgbd_bonn_crowd");
+}
+inline std::string sourceDir() {
+  return BMP_SOURCE_DIR;
+}
+inline std::string binaryDir() {
+  return BMP_BINARY_DIR;
+}
+inline std::string binPath(const std::string& name) {
+  return std::string(BMP_BINARY_DIR) + "/bin/" + name;
+}
+
+// A fresh empty directory under the build tree's test scratch area.
+inline std::filesystem::path scratchDir(const std::string& name) {
+  const auto dir = std::filesystem::path(BMP_BINARY_DIR) / "test-scratch" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace bmp::test
