@@ -1,0 +1,55 @@
+#pragma once
+// Reading TUM-format sequence folders: rgb.txt, depth.txt and optional groundtruth.txt, with colour/depth
+// association as the TUM benchmark's associate.py does it.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bmp/common/tum_trajectory.hpp"
+
+namespace bmp::capture {
+
+class SequenceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One "timestamp filename" line of rgb.txt or depth.txt.
+struct ListEntry {
+  double stamp = 0.0;
+  std::string path;  // relative to the sequence folder, as written in the list
+};
+
+// Parses a TUM list file. Throws SequenceError naming file and line for a malformed line.
+std::vector<ListEntry> readListFile(const std::string& path);
+
+struct StampMatch {
+  std::size_t first = 0;   // index into the first list
+  std::size_t second = 0;  // index into the second list
+};
+
+// associate.py: all pairs closer than max_difference, taken greedily by increasing time difference, each
+// stamp used once; the result is sorted by the first stamp.
+std::vector<StampMatch> associateStamps(const std::vector<double>& first, const std::vector<double>& second,
+                                        double max_difference, double offset = 0.0);
+
+struct FramePair {
+  double rgb_stamp = 0.0;
+  std::string rgb_path;  // absolute or relative to the working directory (folder + list entry)
+  double depth_stamp = 0.0;
+  std::string depth_path;
+};
+
+struct SequenceIndex {
+  std::string dir;
+  std::string name;                  // folder name
+  std::vector<FramePair> frames;     // associated pairs, by colour time
+  Trajectory groundtruth;            // empty when the folder has no groundtruth.txt
+  std::size_t rgb_entries = 0;
+  std::size_t depth_entries = 0;
+};
+
+// Throws SequenceError for a missing folder, a missing or malformed list, or no associated pair.
+SequenceIndex indexSequence(const std::string& dir, double max_difference = 0.02);
+
+}  // namespace bmp::capture
