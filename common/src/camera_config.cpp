@@ -14,12 +14,13 @@ CameraIntrinsics cameraFromConfig(const Config& c) {
   k.cy = c.require<double>("cy");
   const auto d = c.require<std::vector<double>>("distortion");
   if (d.size() != 5)
-    throw ConfigError(c.origin() + ": key '" + c.path("distortion") + "' must list 5 values (k1, k2, p1, p2, k3), got " +
-                      std::to_string(d.size()));
+    throw ConfigError(c.origin() + ": key '" + c.path("distortion") +
+                      "' must list 5 values (k1, k2, p1, p2, k3), got " + std::to_string(d.size()));
   for (int i = 0; i < 5; ++i) k.distortion[i] = d[i];
   k.depth_scale = c.require<double>("depth_scale");
   if (k.width <= 0 || k.height <= 0 || k.fx <= 0 || k.fy <= 0 || k.depth_scale <= 0)
-    throw ConfigError(c.origin() + ": camera '" + c.path("") + "' needs positive size, focal lengths and depth_scale");
+    throw ConfigError(c.origin() + ": camera '" + c.path("") +
+                      "' needs positive size, focal lengths and depth_scale");
   return k;
 }
 

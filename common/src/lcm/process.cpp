@@ -83,7 +83,8 @@ void StatusReporter::publish(int8_t state) {
 }
 
 void StatusReporter::tick(bool force) {
-  if (force || nowUtime() - last_utime_ >= 1000000) publish(process_status_t::STATE_RUNNING);
+  if (force || !announced_ || nowUtime() - last_utime_ >= 1000000) publish(process_status_t::STATE_RUNNING);
+  announced_ = true;
 }
 
 void StatusReporter::finish() {

@@ -36,7 +36,8 @@ class StatusReporter {
   void malformed(int64_t n = 1) { malformed_ += n; }
   void published(int64_t n = 1) { published_ += n; }
   void setMessage(const std::string& message) { message_ = message; }
-  // Publishes when a second has passed since the last heartbeat (or always, when force).
+  // Publishes on the first call (so a launcher waiting for this process sees it as soon as it listens),
+  // then whenever a second has passed since the last heartbeat, or always when force.
   void tick(bool force = false);
   void finish();  // a last heartbeat with state FINISHED
   int64_t receivedCount() const { return received_; }
@@ -53,6 +54,7 @@ class StatusReporter {
   int64_t received_ = 0, processed_ = 0, dropped_ = 0, malformed_ = 0, published_ = 0;
   int64_t last_received_ = 0, last_published_ = 0;
   int64_t last_utime_ = 0;
+  bool announced_ = false;
 };
 
 struct ProcessContext {

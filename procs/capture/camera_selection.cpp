@@ -1,0 +1,26 @@
+#include "capture/camera_selection.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace bmp::capture {
+
+std::string cameraFileFor(const std::string& sequence_dir, const std::string& camera_config_dir) {
+  namespace fs = std::filesystem;
+  if (fs::is_regular_file(fs::path(sequence_dir) / "camera.yaml"))
+    return (fs::path(sequence_dir) / "camera.yaml").string();
+  std::string name = fs::absolute(sequence_dir).lexically_normal().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  const auto pick = [&](const char* file) { return (fs::path(camera_config_dir) / file).string(); };
+  if (name.find("bonn") != std::string::npos) return pick("bonn.yaml");
+  if (name.find("freiburg1") != std::string::npos || name.find("fr1") != std::string::npos)
+    return pick("tum_fr1.yaml");
+  if (name.find("freiburg2") != std::string::npos || name.find("fr2") != std::string::npos)
+    return pick("tum_fr2.yaml");
+  if (name.find("freiburg3") != std::string::npos || name.find("fr3") != std::string::npos)
+    return pick("tum_fr3.yaml");
+  return "";
+}
+
+}  // namespace bmp::capture

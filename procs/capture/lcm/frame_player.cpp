@@ -1,0 +1,94 @@
+#include "capture/lcm/frame_player.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <bmp/slam_pose_t.hpp>
+
+#include "bmp/common/log.hpp"
+#include "bmp/common/timing.hpp"
+#include "capture/lcm/frame_message.hpp"
+
+namespace bmp::capture {
+
+FramePlayer::FramePlayer(LcmNode& lcm, StopSignal& stop, StatusReporter& status, PlayerOptions options)
+    : lcm_(lcm), stop_(stop), status_(status), options_(std::move(options)) {
+  if (options_.mode == RateMode::kLockstep) {
+    lcm_.subscribe<slam_pose_t>(options_.ack_channel, [this](const slam_pose_t& msg, const ReceivedInfo&) {
+      last_acked_seq_ = std::max(last_acked_seq_, msg.seq);
+    });
+  }
+  if (!options_.masks_out.empty()) std::filesystem::create_directories(options_.masks_out);
+}
+
+bool FramePlayer::waitForAck(int64_t seq) {
+  const Stopwatch watch;
+  while (last_acked_seq_ < seq && !stop_.requested()) {
+    if (watch.elapsedMs() > options_.lockstep_timeout_s * 1000.0) return false;
+    lcm_.handle(10);
+  }
+  return true;
+}
+
+void FramePlayer::writeMask(const CapturedFrame& frame) {
+  if (options_.masks_out.empty() || frame.dynamic_mask.empty()) return;
+  char name[64];
+  std::snprintf(name, sizeof(name), "%.6f.png", frame.stamp);
+  cv::imwrite((std::filesystem::path(options_.masks_out) / name).string(), frame.dynamic_mask);
+}
+
+PlayerSummary FramePlayer::play(FrameSource& source) {
+  PlayerSummary summary;
+  Pacer pacer(options_.mode, options_.speed);
+  const Stopwatch total;
+  Stopwatch since_progress;
+  const int64_t expected = source.size();
+  log::info(
+      "playing ", source.name(), ": ", expected, " frames, mode ", toString(options_.mode),
+      options_.mode == RateMode::kRealtime ? ", speed x" + std::to_string(options_.speed) : std::string());
+  while (!stop_.requested()) {
+    std::optional<CapturedFrame> frame = source.next();
+    if (!frame) break;
+    pacer.waitUntilDue(frame->stamp);
+    if (stop_.requested()) break;
+    if (frame->T_world_cam_true) summary.groundtruth.push_back({frame->stamp, *frame->T_world_cam_true});
+    writeMask(*frame);
+    const int64_t seq = summary.published;
+    lcm_.publish(options_.channel, toFrameMessage(std::move(*frame), seq, source.camera(), source.name()));
+    ++summary.published;
+    status_.published();
+    status_.processed();
+    status_.dropped(source.skips().total() - status_.droppedCount());
+    if (!source.skips().last_reason.empty()) status_.setMessage(source.skips().last_reason);
+    if (options_.mode == RateMode::kLockstep && !waitForAck(seq)) {
+      ++summary.lockstep_timeouts;
+      log::warn("no answer on ", options_.ack_channel, " for frame ", seq, " within ",
+                options_.lockstep_timeout_s, " s; going on");
+    }
+    // Drain the socket even when not in lockstep, so our own subscriptions never back up.
+    if (options_.mode != RateMode::kLockstep) lcm_.handle(0);
+    status_.tick();
+    if (since_progress.elapsedMs() >= options_.progress_every_s * 1000.0) {
+      since_progress.restart();
+      log::info("frame ", summary.published, "/", expected, " (",
+                static_cast<int>(summary.published / (total.elapsedMs() / 1000.0)), " fps), skipped ",
+                source.skips().total());
+    }
+  }
+  summary.elapsed_s = total.elapsedMs() / 1000.0;
+  summary.interrupted = stop_.requested();
+  const SkipReport& skips = source.skips();
+  char rate[32];
+  std::snprintf(rate, sizeof(rate), "%.1f", summary.frames_per_second());
+  log::info(
+      "published ", summary.published, " frames in ", summary.elapsed_s, " s (", rate, " fps); skipped ",
+      skips.total(), " (missing ", skips.missing_files, ", corrupt ", skips.corrupt_files, ", wrong size ",
+      skips.wrong_size, ")",
+      summary.lockstep_timeouts ? "; lockstep timeouts " + std::to_string(summary.lockstep_timeouts) : "",
+      summary.interrupted ? "; interrupted" : "");
+  return summary;
+}
+
+}  // namespace bmp::capture

@@ -1,0 +1,152 @@
+// bmp-capture: plays a TUM-format folder, or the synthetic scene, as RGBD_FRAME messages.
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include <bmp/process_status_t.hpp>
+
+#include "bmp/common/camera_config.hpp"
+#include "bmp/common/log.hpp"
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/process.hpp"
+#include "capture/camera_selection.hpp"
+#include "capture/lcm/frame_player.hpp"
+#include "capture/synthetic_config.hpp"
+#include "capture/synthetic_source.hpp"
+#include "capture/tum_source.hpp"
+
+namespace {
+
+using namespace bmp;
+using namespace bmp::capture;
+
+void addOptions(ArgParser& args) {
+  args.addOption("dataset", "DIR",
+                 "TUM-format folder (rgb.txt, depth.txt, optional groundtruth.txt); "
+                 "without it the synthetic scene plays");
+  args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else chosen by the folder name");
+  args.addOption("synthetic-config", "FILE", "synthetic scene YAML (default: capture.synthetic_config)");
+  args.addOption("mode", "MODE", "realtime | fast | lockstep (default: capture.mode)");
+  args.addOption("speed", "X", "realtime mode: recorded rate x X (default: capture.speed)");
+  args.addOption("start", "N", "first associated frame to play", "0");
+  args.addOption("end", "N", "one past the last frame to play; -1 = all", "-1");
+  args.addOption("every", "K", "play every K-th frame", "1");
+  args.addOption("verify", "HOW", "header | decode: how images are checked before publishing");
+  args.addOption("groundtruth-out", "FILE", "write the ground truth of the played sequence (TUM format)");
+  args.addOption("masks-out", "DIR", "synthetic scene: write the dynamic-object masks as PNG");
+  args.addOption("wait-for", "NAMES",
+                 "comma-separated process names whose heartbeat must be seen before "
+                 "the first frame (e.g. bmp-tracker,bmp-detector)");
+  args.addEpilog(
+      "Examples:\n"
+      "  bmp-capture --dataset ../shared/data/rgbd_bonn_crowd --mode realtime\n"
+      "  bmp-capture --mode lockstep --groundtruth-out out/gt.txt      # synthetic scene\n"
+      "Skipped files (missing, corrupt, wrong size) are reported with the reason and counted.\n");
+}
+
+void waitForProcesses(ProcessContext& ctx, const std::string& names, double timeout_s) {
+  std::set<std::string> pending;
+  std::stringstream list(names);
+  for (std::string name; std::getline(list, name, ',');)
+    if (!name.empty()) pending.insert(name);
+  if (pending.empty()) return;
+  ctx.lcm.subscribe<process_status_t>(
+      "PROCESS_STATUS",
+      [&pending](const process_status_t& msg, const ReceivedInfo&) { pending.erase(msg.name); });
+  log::info("waiting for heartbeats of ", names);
+  const Stopwatch watch;
+  while (!pending.empty() && !ctx.stop.requested()) {
+    if (watch.elapsedMs() > timeout_s * 1000.0) {
+      std::string missing;
+      for (const auto& n : pending) missing += (missing.empty() ? "" : ", ") + n;
+      throw std::runtime_error("no heartbeat from " + missing + " within " + std::to_string(timeout_s) +
+                               " s");
+    }
+    ctx.lcm.handle(50);
+  }
+}
+
+std::unique_ptr<FrameSource> makeSource(ProcessContext& ctx, const Config& cfg) {
+  const auto& args = ctx.args;
+  const auto warn = [](const std::string& m) { log::warn(m); };
+  const std::string synthetic_file = cfg.get<std::string>("synthetic_config", "synthetic.yaml");
+  const double max_difference = cfg.get<double>("max_association_difference_s", 0.02);
+  const std::string verify =
+      args.given("verify") ? args.value("verify") : cfg.get<std::string>("verify", "header");
+  if (!args.given("dataset")) {
+    const std::string path =
+        args.given("synthetic-config") ? args.value("synthetic-config") : configDir() + "/" + synthetic_file;
+    const Config synthetic = Config::fromFile(path);
+    SyntheticSceneConfig scene_config = syntheticSceneFromConfig(synthetic.section("synthetic"));
+    synthetic.finish();
+    return std::make_unique<SyntheticSource>(SyntheticScene(scene_config));
+  }
+  const std::string dir = args.value("dataset");
+  std::string camera_file = args.value("camera");
+  if (camera_file.empty()) camera_file = cameraFileFor(dir, configDir() + "/cameras");
+  if (camera_file.empty())
+    throw ConfigError(dir +
+                      ": cannot tell which camera recorded this folder; pass --camera FILE "
+                      "(see config/cameras/) or put a camera.yaml in the folder");
+  const Config camera_config = Config::fromFile(camera_file);
+  const CameraIntrinsics camera = cameraFromConfig(camera_config.section("camera"));
+  camera_config.finish();
+  log::info("camera from ", camera_file);
+  TumSourceOptions options;
+  options.selection = {args.integer("start"), args.integer("end"), args.integer("every")};
+  options.verify = parseVerifyMode(verify);
+  options.warn = warn;
+  SequenceIndex index = indexSequence(dir, max_difference);
+  log::info(dir, ": ", index.frames.size(), " associated pairs from ", index.rgb_entries, " colour and ",
+            index.depth_entries, " depth entries",
+            index.groundtruth.empty() ? ", no ground truth" : ", with ground truth");
+  return std::make_unique<TumSource>(std::move(index), camera, std::move(options));
+}
+
+int run(ProcessContext& ctx) {
+  const Config cfg = ctx.config.section("capture");
+  PlayerOptions options;
+  options.channel = cfg.get<std::string>("channel", options.channel);
+  options.ack_channel = cfg.get<std::string>("ack_channel", options.ack_channel);
+  const std::string mode =
+      ctx.args.given("mode") ? ctx.args.value("mode") : cfg.get<std::string>("mode", "realtime");
+  options.mode = parseRateMode(mode);
+  options.speed =
+      ctx.args.given("speed") ? ctx.args.number("speed") : cfg.get<double>("speed", options.speed);
+  options.lockstep_timeout_s = cfg.get<double>("lockstep_timeout_s", options.lockstep_timeout_s);
+  options.progress_every_s = cfg.get<double>("progress_every_s", options.progress_every_s);
+  options.masks_out = ctx.args.value("masks-out");
+  const double wait_timeout_s = cfg.get<double>("wait_timeout_s", 30.0);
+  std::unique_ptr<FrameSource> source = makeSource(ctx, cfg);
+  finishConfig(ctx);
+
+  waitForProcesses(ctx, ctx.args.value("wait-for"), wait_timeout_s);
+  ctx.status.tick(true);
+  FramePlayer player(ctx.lcm, ctx.stop, ctx.status, options);
+  PlayerSummary summary = player.play(*source);
+
+  if (ctx.args.given("groundtruth-out")) {
+    const std::string out = ctx.args.value("groundtruth-out");
+    const auto* tum = dynamic_cast<const TumSource*>(source.get());
+    const Trajectory& gt = tum ? tum->index().groundtruth : summary.groundtruth;
+    if (gt.empty()) {
+      log::warn("no ground truth for ", source->name(), "; ", out, " not written");
+    } else {
+      writeTumTrajectory(out, gt);
+      log::info("ground truth (", gt.size(), " poses) written to ", out);
+    }
+  }
+  return summary.published > 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bmp::runProcess(
+      argc, argv,
+      {"bmp-capture",
+       "Plays a TUM-format RGB-D folder, or the built-in synthetic scene, as RGBD_FRAME "
+       "messages over LCM, in real time, as fast as possible, or in lockstep with the tracker.",
+       "capture.yaml", addOptions, run});
+}

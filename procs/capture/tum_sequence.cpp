@@ -1,0 +1,127 @@
+#include "capture/tum_sequence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <tuple>
+
+namespace bmp::capture {
+
+namespace fs = std::filesystem;
+
+std::vector<ListEntry> readListFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SequenceError(path + ": cannot open list file");
+  std::vector<ListEntry> entries;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::replace(line.begin(), line.end(), '\t', ' ');
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto first = line.find_first_not_of(' ');
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    ListEntry entry;
+    std::string stamp_text, extra;
+    fields >> stamp_text >> entry.path;
+    std::size_t used = 0;
+    bool numeric = false;
+    try {
+      entry.stamp = std::stod(stamp_text, &used);
+      numeric = used == stamp_text.size() && std::isfinite(entry.stamp);
+    } catch (const std::exception&) {
+      numeric = false;
+    }
+    if (!numeric || entry.path.empty() || (fields >> extra)) {
+      throw SequenceError(path + ":" + std::to_string(line_no) + ": expected 'timestamp filename', got '" +
+                          line + "'");
+    }
+    entries.push_back(std::move(entry));
+  }
+  return entries;
+}
+
+std::vector<StampMatch> associateStamps(const std::vector<double>& first, const std::vector<double>& second,
+                                        double max_difference, double offset) {
+  // Candidate pairs within max_difference; second is searched through a sorted copy so this stays
+  // O(n log n) for long sequences, while the greedy choice is exactly associate.py's.
+  std::vector<std::size_t> order(second.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return second[a] < second[b]; });
+  std::vector<double> sorted(second.size());
+  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = second[order[i]] + offset;
+
+  std::vector<std::tuple<double, double, double, std::size_t, std::size_t>> candidates;
+  for (std::size_t a = 0; a < first.size(); ++a) {
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), first[a] - max_difference);
+    for (; it != sorted.end() && *it < first[a] + max_difference; ++it) {
+      const std::size_t b = order[static_cast<std::size_t>(it - sorted.begin())];
+      const double diff = std::abs(first[a] - (second[b] + offset));
+      if (diff < max_difference) candidates.emplace_back(diff, first[a], second[b], a, b);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<bool> used_first(first.size(), false), used_second(second.size(), false);
+  std::vector<StampMatch> matches;
+  for (const auto& [diff, ta, tb, a, b] : candidates) {
+    if (used_first[a] || used_second[b]) continue;
+    used_first[a] = used_second[b] = true;
+    matches.push_back({a, b});
+  }
+  std::sort(matches.begin(), matches.end(),
+            [&](const StampMatch& x, const StampMatch& y) { return first[x.first] < first[y.first]; });
+  return matches;
+}
+
+SequenceIndex indexSequence(const std::string& dir, double max_difference) {
+  if (!fs::is_directory(dir)) throw SequenceError(dir + ": no such sequence folder");
+  const fs::path root(dir);
+  for (const char* list : {"rgb.txt", "depth.txt"}) {
+    if (!fs::is_regular_file(root / list))
+      throw SequenceError(dir + ": not a TUM-format folder (" + list + " is missing)");
+  }
+  SequenceIndex index;
+  const auto existing = [&](const std::string& list) {
+    std::vector<ListEntry> kept;
+    for (auto& e : readListFile((root / list).string())) {
+      if (fs::is_regular_file(root / e.path)) {
+        kept.push_back(std::move(e));
+      } else {
+        index.missing_files.push_back((root / e.path).string());
+      }
+    }
+    return kept;
+  };
+  const auto rgb = existing("rgb.txt");
+  const auto depth = existing("depth.txt");
+  std::vector<double> rgb_stamps, depth_stamps;
+  for (const auto& e : rgb) rgb_stamps.push_back(e.stamp);
+  for (const auto& e : depth) depth_stamps.push_back(e.stamp);
+
+  index.dir = dir;
+  index.name = fs::absolute(root).lexically_normal().filename().string();
+  if (index.name.empty())
+    index.name = fs::absolute(root).lexically_normal().parent_path().filename().string();
+  index.rgb_entries = rgb.size();
+  index.depth_entries = depth.size();
+  for (const auto& m : associateStamps(rgb_stamps, depth_stamps, max_difference)) {
+    index.frames.push_back({rgb[m.first].stamp, (root / rgb[m.first].path).string(), depth[m.second].stamp,
+                            (root / depth[m.second].path).string()});
+  }
+  if (index.frames.empty())
+    throw SequenceError(dir + ": no colour/depth pair within " + std::to_string(max_difference) + " s");
+  if (fs::is_regular_file(root / "groundtruth.txt")) {
+    try {
+      index.groundtruth = readTumTrajectory((root / "groundtruth.txt").string());
+    } catch (const TrajectoryError& e) {
+      throw SequenceError(e.what());
+    }
+  }
+  return index;
+}
+
+}  // namespace bmp::capture

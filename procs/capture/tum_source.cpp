@@ -1,0 +1,100 @@
+#include "capture/tum_source.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace bmp::capture {
+
+TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSourceOptions options)
+    : index_(std::move(index)), camera_(camera), options_(std::move(options)) {
+  if (options_.selection.every < 1) throw std::invalid_argument("frame selection: every must be >= 1");
+  if (options_.selection.start < 0) throw std::invalid_argument("frame selection: start must be >= 0");
+  cursor_ = options_.selection.start;
+  for (const auto& path : index_.missing_files)
+    skip(skips_.missing_files, path + ": listed but does not exist");
+}
+
+int64_t TumSource::size() const {
+  const auto total = static_cast<int64_t>(index_.frames.size());
+  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
+  if (end <= options_.selection.start) return 0;
+  return (end - options_.selection.start + options_.selection.every - 1) / options_.selection.every;
+}
+
+void TumSource::skip(int64_t& counter, const std::string& reason) {
+  ++counter;
+  skips_.last_reason = reason;
+  if (options_.warn) options_.warn("skipped " + reason);
+}
+
+bool TumSource::load(const std::string& path, bool is_depth, EncodedImage& out) {
+  if (!std::filesystem::is_regular_file(path)) {
+    skip(skips_.missing_files, path + ": file does not exist");
+    return false;
+  }
+  std::vector<uint8_t> bytes;
+  ImageProbe probe;
+  try {
+    bytes = readFileBytes(path);
+    probe = probeEncodedImage(bytes);
+  } catch (const ImageError& e) {
+    skip(skips_.corrupt_files, path + ": " + e.what());
+    return false;
+  }
+  const bool format_ok =
+      is_depth
+          ? (probe.encoding == ImageEncoding::kPng && probe.bit_depth == 16 && probe.channels == 1)
+          : (probe.bit_depth == 8 && (probe.channels == 3 || probe.channels == 4 || probe.channels == 1));
+  if (!format_ok) {
+    skip(skips_.corrupt_files,
+         path + ": " + (is_depth ? "depth must be a 16-bit single-channel PNG" : "colour must be 8-bit") +
+             ", found " + std::to_string(probe.bit_depth) + "-bit, " + std::to_string(probe.channels) +
+             " channel(s)");
+    return false;
+  }
+  if (probe.width != camera_.width || probe.height != camera_.height) {
+    skip(skips_.wrong_size, path + ": image is " + std::to_string(probe.width) + "x" +
+                                std::to_string(probe.height) + ", the camera is " +
+                                std::to_string(camera_.width) + "x" + std::to_string(camera_.height));
+    return false;
+  }
+  out.width = probe.width;
+  out.height = probe.height;
+  out.encoding = probe.encoding;
+  out.pixel_format = is_depth ? PixelFormat::kMono16 : PixelFormat::kBgr8;
+  out.data = std::move(bytes);
+  if (options_.verify == VerifyMode::kDecode) {
+    try {
+      decodeImage(out);
+    } catch (const ImageError& e) {
+      skip(skips_.corrupt_files, path + ": " + e.what());
+      return false;
+    }
+  }
+  return true;
+}
+
+std::optional<CapturedFrame> TumSource::next() {
+  const auto total = static_cast<int64_t>(index_.frames.size());
+  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
+  while (cursor_ < end) {
+    const int64_t i = cursor_;
+    cursor_ += options_.selection.every;
+    const FramePair& pair = index_.frames[static_cast<std::size_t>(i)];
+    CapturedFrame frame;
+    frame.index = i;
+    frame.stamp = pair.rgb_stamp;
+    frame.depth_stamp = pair.depth_stamp;
+    if (!load(pair.rgb_path, false, frame.color) || !load(pair.depth_path, true, frame.depth)) continue;
+    return frame;
+  }
+  return std::nullopt;
+}
+
+VerifyMode parseVerifyMode(const std::string& text) {
+  if (text == "header") return VerifyMode::kHeader;
+  if (text == "decode") return VerifyMode::kDecode;
+  throw std::invalid_argument("verify mode must be 'header' or 'decode', got '" + text + "'");
+}
+
+}  // namespace bmp::capture

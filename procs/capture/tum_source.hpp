@@ -1,0 +1,54 @@
+#pragma once
+// Frames from a TUM-format folder, as the bytes of their files. Every file is checked before it is offered:
+// a missing, corrupt or wrongly-sized image is skipped with a warning and counted, never invented.
+#include <functional>
+#include <string>
+
+#include "capture/frame_source.hpp"
+#include "capture/tum_sequence.hpp"
+
+namespace bmp::capture {
+
+enum class VerifyMode {
+  kHeader,  // structure only (PNG chunk CRCs, JPEG markers, sizes): cheap, keeps fast mode fast
+  kDecode,  // full decode of both images
+};
+
+struct FrameSelection {
+  int64_t start = 0;  // first associated frame to play
+  int64_t end = -1;   // one past the last; -1 plays to the end
+  int64_t every = 1;  // play every n-th frame
+};
+
+struct TumSourceOptions {
+  FrameSelection selection;
+  VerifyMode verify = VerifyMode::kHeader;
+  std::function<void(const std::string&)> warn;  // receives one line per skipped frame
+};
+
+class TumSource : public FrameSource {
+ public:
+  TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSourceOptions options);
+
+  std::optional<CapturedFrame> next() override;
+  const CameraIntrinsics& camera() const override { return camera_; }
+  std::string name() const override { return index_.name; }
+  int64_t size() const override;
+  const SkipReport& skips() const override { return skips_; }
+  const SequenceIndex& index() const { return index_; }
+
+ private:
+  // Reads and checks one image; returns false (and counts why) when the frame must be skipped.
+  bool load(const std::string& path, bool is_depth, EncodedImage& out);
+  void skip(int64_t& counter, const std::string& reason);
+
+  SequenceIndex index_;
+  CameraIntrinsics camera_;
+  TumSourceOptions options_;
+  int64_t cursor_;
+  SkipReport skips_;
+};
+
+VerifyMode parseVerifyMode(const std::string& text);  // "header" | "decode"; throws std::invalid_argument
+
+}  // namespace bmp::capture
