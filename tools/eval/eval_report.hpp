@@ -1,0 +1,29 @@
+#pragma once
+// Human-readable and JSON summaries of one evaluation.
+#include <cstddef>
+#include <string>
+
+#include "eval/ate.hpp"
+#include "eval/rpe.hpp"
+
+namespace bmp::eval {
+
+struct EvalReport {
+  std::string label;
+  std::string gt_path;
+  std::string est_path;
+  std::size_t gt_poses = 0;
+  std::size_t est_poses = 0;
+  AteOptions ate_options;
+  RpeOptions rpe_options;
+  AteResult ate;
+  RpeResult rpe;
+};
+
+std::string formatText(const EvalReport& report);
+// One JSON object; NaN statistics (no RPE pairs) become null.
+std::string formatJson(const EvalReport& report);
+// Throws EvalError naming the path when it cannot be written.
+void writeTextFile(const std::string& path, const std::string& text);
+
+}  // namespace bmp::eval
