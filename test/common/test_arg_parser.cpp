@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include "bmp/common/arg_parser.hpp"
+
+namespace bmp {
+namespace {
+
+ArgParser makeParser() {
+  ArgParser p("prog", "does things");
+  p.addOption("speed", "X", "speed factor", "1.0");
+  p.addOption("name", "S", "a name");
+  p.addFlag("fast", "go fast");
+  return p;
+}
+
+TEST(ArgParser, ParsesBothValueFormsAndFlags) {
+  ArgParser p = makeParser();
+  const char* argv[] = {"prog", "--speed", "2.5", "--name=x", "--fast"};
+  ASSERT_TRUE(p.parse(5, argv));
+  EXPECT_DOUBLE_EQ(p.number("speed"), 2.5);
+  EXPECT_EQ(p.value("name"), "x");
+  EXPECT_TRUE(p.flag("fast"));
+}
+
+TEST(ArgParser, DefaultsAndHelp) {
+  ArgParser p = makeParser();
+  const char* argv[] = {"prog", "--help"};
+  EXPECT_FALSE(p.parse(2, argv));
+  EXPECT_EQ(p.value("speed"), "1.0");
+  const std::string help = p.help();
+  EXPECT_NE(help.find("--speed X"), std::string::npos);
+  EXPECT_NE(help.find("(default: 1.0)"), std::string::npos);
+}
+
+TEST(ArgParser, ErrorsNameTheOption) {
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--sped", "2"};
+    EXPECT_THROW(p.parse(3, argv), ArgError);
+  }
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--speed"};
+    EXPECT_THROW(p.parse(2, argv), ArgError);
+  }
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--speed", "fast"};
+    ASSERT_TRUE(p.parse(3, argv));
+    try {
+      p.number("speed");
+      FAIL();
+    } catch (const ArgError& e) {
+      EXPECT_NE(std::string(e.what()).find("--speed"), std::string::npos);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bmp

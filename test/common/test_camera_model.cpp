@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/calib3d.hpp>
+
+#include "bmp/common/camera_config.hpp"
+#include "bmp/common/camera_model.hpp"
+#include "shared_data.hpp"
+
+namespace bmp {
+namespace {
+
+CameraIntrinsics bonn() {
+  const Config c = Config::fromFile(test::sourceDir() + "/config/cameras/bonn.yaml");
+  return cameraFromConfig(c.section("camera"));
+}
+
+TEST(CameraModel, ProjectBackProjectRoundTrip) {
+  const CameraModel cam(bonn());
+  const Eigen::Vector3d p(0.3, -0.2, 2.0);
+  const Eigen::Vector2d uv = cam.projectPinhole(p);
+  EXPECT_LT((cam.backProject(uv, 2.0) - p).norm(), 1e-12);
+}
+
+// Our distortion must agree with OpenCV's projectPoints, and undistortion must invert it.
+TEST(CameraModel, DistortionMatchesOpenCvAndInverts) {
+  const CameraIntrinsics k = bonn();
+  const CameraModel cam(k);
+  const cv::Matx33d K(k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
+  const std::vector<double> dist(k.distortion.begin(), k.distortion.end());
+  for (double x = -0.5; x <= 0.5; x += 0.25) {
+    for (double y = -0.4; y <= 0.4; y += 0.2) {
+      std::vector<cv::Point3d> pts{{x, y, 1.0}};
+      std::vector<cv::Point2d> out;
+      cv::projectPoints(pts, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, dist, out);
+      const Eigen::Vector2d uv = cam.project({x, y, 1.0});
+      EXPECT_NEAR(uv.x(), out[0].x, 1e-9);
+      EXPECT_NEAR(uv.y(), out[0].y, 1e-9);
+      const Eigen::Vector2d ideal = cam.projectPinhole({x, y, 1.0});
+      EXPECT_LT((cam.undistortPixel(uv) - ideal).norm(), 1e-6);
+    }
+  }
+}
+
+TEST(CameraConfig, RejectsWrongDistortionLength) {
+  const Config c = Config::fromString(
+      "camera: {width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, distortion: [0, 0], depth_scale: 5000}",
+      "cam.yaml");
+  EXPECT_THROW(cameraFromConfig(c.section("camera")), ConfigError);
+}
+
+}  // namespace
+}  // namespace bmp

@@ -1,0 +1,69 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bmp/common/image_codec.hpp"
+#include "shared_data.hpp"
+
+namespace bmp {
+namespace {
+
+const std::string kDepth = "data/rgbd_bonn_crowd/depth/1548339829.89888.png";
+const std::string kColour = "data/rgbd_bonn_crowd/rgb/1548339829.89644.jpg";
+
+TEST(ImageProbe, RealBonnFiles) {
+  const ImageProbe depth = probeEncodedImage(readFileBytes(test::sharedPath(kDepth)));
+  EXPECT_EQ(depth.encoding, ImageEncoding::kPng);
+  EXPECT_EQ(depth.width, 640);
+  EXPECT_EQ(depth.height, 480);
+  EXPECT_EQ(depth.bit_depth, 16);
+  EXPECT_EQ(depth.channels, 1);
+  const ImageProbe colour = probeEncodedImage(readFileBytes(test::sharedPath(kColour)));
+  EXPECT_EQ(colour.encoding, ImageEncoding::kJpeg);
+  EXPECT_EQ(colour.width, 640);
+  EXPECT_EQ(colour.height, 480);
+  EXPECT_EQ(colour.channels, 3);
+}
+
+TEST(ImageProbe, DetectsCorruption) {
+  std::vector<uint8_t> png = readFileBytes(test::sharedPath(kDepth));
+  std::vector<uint8_t> flipped = png;
+  flipped[png.size() / 2] ^= 0x40;  // one bit inside the compressed data
+  EXPECT_THROW(probeEncodedImage(flipped), ImageError);
+  std::vector<uint8_t> truncated(png.begin(), png.begin() + static_cast<long>(png.size() / 2));
+  EXPECT_THROW(probeEncodedImage(truncated), ImageError);
+  std::vector<uint8_t> jpeg = readFileBytes(test::sharedPath(kColour));
+  std::vector<uint8_t> jpeg_cut(jpeg.begin(), jpeg.begin() + static_cast<long>(jpeg.size() - 500));
+  EXPECT_THROW(probeEncodedImage(jpeg_cut), ImageError);
+  EXPECT_THROW(probeEncodedImage({'h', 'e', 'l', 'l', 'o'}), ImageError);
+  EXPECT_THROW(probeEncodedImage({}), ImageError);
+}
+
+TEST(ImageCodec, DecodesRealFilesWithDeclaredFormat) {
+  EncodedImage depth{640, 480, ImageEncoding::kPng, PixelFormat::kMono16, readFileBytes(test::sharedPath(kDepth))};
+  const cv::Mat d = decodeImage(depth);
+  EXPECT_EQ(d.type(), CV_16UC1);
+  EXPECT_GT(cv::countNonZero(d), 100000);
+  EncodedImage colour{640, 480, ImageEncoding::kJpeg, PixelFormat::kBgr8, readFileBytes(test::sharedPath(kColour))};
+  EXPECT_EQ(decodeImage(colour).type(), CV_8UC3);
+  // Declared size must match.
+  colour.width = 320;
+  EXPECT_THROW(decodeImage(colour), ImageError);
+}
+
+TEST(ImageCodec, RawAndPngRoundTrip) {
+  cv::Mat depth(48, 64, CV_16UC1);
+  cv::randu(depth, 0, 60000);
+  for (ImageEncoding enc : {ImageEncoding::kRaw, ImageEncoding::kPng}) {
+    const EncodedImage e = encodeImage(depth, enc);
+    EXPECT_EQ(cv::norm(decodeImage(e), depth, cv::NORM_INF), 0.0) << toString(enc);
+  }
+  EncodedImage bad = encodeImage(depth, ImageEncoding::kRaw);
+  bad.data.pop_back();
+  EXPECT_THROW(decodeImage(bad), ImageError);
+  EncodedImage garbage{64, 48, ImageEncoding::kPng, PixelFormat::kMono16, {1, 2, 3, 4}};
+  EXPECT_THROW(decodeImage(garbage), ImageError);
+}
+
+}  // namespace
+}  // namespace bmp

@@ -1,0 +1,70 @@
+#include <gtest/gtest.h>
+
+#include <bmp/slam_pose_t.hpp>
+
+#include "bmp/lcm/conversions.hpp"
+#include "bmp/lcm/lcm_node.hpp"
+
+namespace bmp {
+namespace {
+
+TEST(LcmNode, TypedRoundTripOverMemq) {
+  LcmNode node("memq://");
+  std::vector<slam_pose_t> got;
+  node.subscribe<slam_pose_t>("POSE", [&](const slam_pose_t& m, const ReceivedInfo& info) {
+    got.push_back(m);
+    EXPECT_EQ(info.channel, "POSE");
+  });
+  slam_pose_t msg{};
+  msg.seq = 17;
+  msg.T_world_cam = toMsg(makeSE3({1, 2, 3}, Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()))));
+  node.publish("POSE", msg);
+  node.handle(100);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].seq, 17);
+  EXPECT_LT((fromMsg(got[0].T_world_cam).translation() - Eigen::Vector3d(1, 2, 3)).norm(), 1e-12);
+}
+
+// Another publisher's bytes on our channel must be reported and skipped, never crash or reach the handler.
+TEST(LcmNode, MalformedMessageIsCountedAndNamed) {
+  std::vector<std::string> warnings;
+  LcmNode node("memq://", [&](const std::string& w) { warnings.push_back(w); });
+  int calls = 0;
+  node.subscribe<slam_pose_t>("SLAM_POSE", [&](const slam_pose_t&, const ReceivedInfo&) { ++calls; });
+  const char garbage[] = "definitely not an LCM-encoded slam_pose_t";
+  node.raw().publish("SLAM_POSE", garbage, sizeof(garbage));
+  node.raw().publish("SLAM_POSE", garbage, 3);
+  node.handle(100);
+  node.handle(100);
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(node.malformedCount(), 2);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("SLAM_POSE"), std::string::npos) << warnings[0];
+  // A good message after the bad ones still arrives.
+  slam_pose_t ok{};
+  node.publish("SLAM_POSE", ok);
+  node.handle(100);
+  EXPECT_EQ(calls, 1);
+}
+
+TEST(LcmNode, BadUrlIsAClearError) {
+  EXPECT_THROW(LcmNode("nonsense://x"), LcmError);
+}
+
+TEST(Conversions, ImageAndCamera) {
+  EncodedImage img{2, 1, ImageEncoding::kRaw, PixelFormat::kMono16, {1, 2, 3, 4}};
+  const EncodedImage back = fromMsg(toMsg(img));
+  EXPECT_EQ(back.data, img.data);
+  EXPECT_EQ(back.pixel_format, PixelFormat::kMono16);
+  image_t bad = toMsg(img);
+  bad.encoding = 9;
+  EXPECT_THROW(fromMsg(bad), ImageError);
+  CameraIntrinsics k;
+  k.distortion = {0.1, -0.2, 0.01, 0.02, 0.3};
+  const CameraIntrinsics k2 = fromMsg(toMsg(k), 1000.0);
+  EXPECT_EQ(k2.distortion, k.distortion);
+  EXPECT_EQ(k2.depth_scale, 1000.0);
+}
+
+}  // namespace
+}  // namespace bmp
