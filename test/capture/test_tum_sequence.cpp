@@ -1,0 +1,218 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "capture/pacer.hpp"
+#include "capture/tum_sequence.hpp"
+#include "capture/tum_source.hpp"
+#include "shared_data.hpp"
+
+namespace bmp::capture {
+namespace {
+
+namespace fs = std::filesystem;
+
+// associate.py written out plainly (all pairs, sort, greedy): the reference for the fast version.
+std::vector<std::pair<double, double>> referenceAssociate(const std::vector<double>& a, const std::vector<double>& b,
+                                                          double max_diff) {
+  std::vector<std::tuple<double, double, double>> pm;
+  for (double x : a)
+    for (double y : b)
+      if (std::abs(x - y) < max_diff) pm.emplace_back(std::abs(x - y), x, y);
+  std::sort(pm.begin(), pm.end());
+  std::set<double> ua, ub;
+  std::vector<std::pair<double, double>> out;
+  for (auto& [d, x, y] : pm)
+    if (!ua.count(x) && !ub.count(y)) {
+      ua.insert(x);
+      ub.insert(y);
+      out.emplace_back(x, y);
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+CameraIntrinsics bonnCamera() {
+  CameraIntrinsics k;
+  k.width = 640;
+  k.height = 480;
+  return k;
+}
+
+TEST(TumSequence, BonnIndexMatchesAssociatePy) {
+  const SequenceIndex index = indexSequence(test::bonnDir());
+  EXPECT_EQ(index.name, "rgbd_bonn_crowd");
+  EXPECT_EQ(index.missing_files.size(), 6u);  // the dataset's known defect
+  EXPECT_EQ(index.groundtruth.size(), 933u);
+  std::vector<double> rgb, depth;
+  for (const auto& e : readListFile(test::bonnDir() + "/rgb.txt")) rgb.push_back(e.stamp);
+  for (const auto& e : readListFile(test::bonnDir() + "/depth.txt"))
+    if (fs::exists(test::bonnDir() + "/" + e.path)) depth.push_back(e.stamp);
+  const auto expected = referenceAssociate(rgb, depth, 0.02);
+  ASSERT_EQ(index.frames.size(), expected.size());
+  EXPECT_EQ(index.frames.size(), 927u);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(index.frames[i].rgb_stamp, expected[i].first);
+    EXPECT_EQ(index.frames[i].depth_stamp, expected[i].second);
+  }
+}
+
+TEST(TumSequence, AssociationIsGreedyByDifference) {
+  // 1.008-1.005 (0.003) is the smallest difference and is taken first, so 1.000 gets 1.015 (0.015) even
+  // though 1.005 is its nearest stamp: greedy by difference, not nearest-neighbour per stamp.
+  const auto m = associateStamps({1.000, 1.008}, {1.005, 1.015}, 0.02);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].first, 0u);
+  EXPECT_EQ(m[0].second, 1u);
+  EXPECT_EQ(m[1].second, 0u);
+  EXPECT_TRUE(associateStamps({1.0}, {1.03}, 0.02).empty());
+}
+
+TEST(TumSequence, MissingFolderAndListAreClearErrors) {
+  try {
+    indexSequence("/nonexistent/sequence");
+    FAIL();
+  } catch (const SequenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/sequence"), std::string::npos);
+  }
+  const auto dir = test::scratchDir("tum_no_depth_list");
+  std::ofstream(dir / "rgb.txt") << "1.0 rgb/1.png\n";
+  try {
+    indexSequence(dir.string());
+    FAIL();
+  } catch (const SequenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("depth.txt"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TumSequence, MalformedListLineNamesFileAndLine) {
+  const auto dir = test::scratchDir("tum_bad_list");
+  std::ofstream(dir / "rgb.txt") << "# header\n1.0 rgb/1.png\nnot-a-stamp rgb/2.png\n";
+  try {
+    readListFile((dir / "rgb.txt").string());
+    FAIL();
+  } catch (const SequenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("rgb.txt:3"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "depth.txt") << "1.0\n";
+  EXPECT_THROW(readListFile((dir / "depth.txt").string()), SequenceError);
+}
+
+// A folder of five real Bonn frames, then damaged in the ways real folders are.
+class DamagedFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::scratchDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_ / "rgb");
+    fs::create_directories(dir_ / "depth");
+    const SequenceIndex bonn = indexSequence(test::bonnDir());
+    std::ofstream rgb(dir_ / "rgb.txt"), depth(dir_ / "depth.txt");
+    for (std::size_t i = 100; i < 105; ++i) {
+      const FramePair& f = bonn.frames[i];
+      const std::string rn = "rgb/" + fs::path(f.rgb_path).filename().string();
+      const std::string dn = "depth/" + fs::path(f.depth_path).filename().string();
+      fs::copy_file(f.rgb_path, dir_ / rn);
+      fs::copy_file(f.depth_path, dir_ / dn);
+      rgb << std::fixed << f.rgb_stamp << " " << rn << "\n";
+      depth << std::fixed << f.depth_stamp << " " << dn << "\n";
+      depth_files_.push_back(dir_ / dn);
+      rgb_files_.push_back(dir_ / rn);
+    }
+  }
+  std::vector<CapturedFrame> playAll(SkipReport& skips, std::vector<std::string>& warnings) {
+    TumSourceOptions options;
+    options.warn = [&](const std::string& w) { warnings.push_back(w); };
+    TumSource source(indexSequence(dir_.string()), bonnCamera(), options);
+    std::vector<CapturedFrame> frames;
+    while (auto f = source.next()) frames.push_back(std::move(*f));
+    skips = source.skips();
+    return frames;
+  }
+  fs::path dir_;
+  std::vector<fs::path> depth_files_, rgb_files_;
+};
+
+TEST_F(DamagedFolder, IntactFolderPlaysEveryFrameAsFileBytes) {
+  SkipReport skips;
+  std::vector<std::string> warnings;
+  const auto frames = playAll(skips, warnings);
+  ASSERT_EQ(frames.size(), 5u);
+  EXPECT_EQ(skips.total(), 0);
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_EQ(frames[0].color.encoding, ImageEncoding::kJpeg);
+  EXPECT_EQ(frames[0].color.data, readFileBytes(rgb_files_[0].string()));  // forwarded, not re-encoded
+  EXPECT_EQ(frames[0].depth.encoding, ImageEncoding::kPng);
+}
+
+TEST_F(DamagedFolder, CorruptMissingAndWrongSizeAreSkippedWithReasons) {
+  // 1: corrupt PNG (a flipped bit), 2: missing depth file, 3: depth of the wrong size.
+  std::vector<uint8_t> bytes = readFileBytes(depth_files_[1].string());
+  bytes[bytes.size() / 2] ^= 0x10;
+  std::ofstream(depth_files_[1], std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                         static_cast<std::streamsize>(bytes.size()));
+  fs::remove(depth_files_[2]);
+  cv::imwrite(depth_files_[3].string(), cv::Mat(240, 320, CV_16UC1, cv::Scalar(1000)));
+  SkipReport skips;
+  std::vector<std::string> warnings;
+  const auto frames = playAll(skips, warnings);
+  EXPECT_EQ(frames.size(), 2u);  // frames 0 and 4
+  EXPECT_EQ(skips.corrupt_files, 1);
+  EXPECT_EQ(skips.missing_files, 1);
+  EXPECT_EQ(skips.wrong_size, 1);
+  ASSERT_EQ(warnings.size(), 3u);
+  const auto mentions = [&](const std::string& what, const fs::path& file) {
+    for (const auto& w : warnings)
+      if (w.find(file.filename().string()) != std::string::npos && w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(mentions("CRC", depth_files_[1]));
+  EXPECT_TRUE(mentions("does not exist", depth_files_[2]));
+  EXPECT_TRUE(mentions("320x240", depth_files_[3]));
+}
+
+TEST_F(DamagedFolder, DecodeVerificationCatchesWhatHeadersCannot) {
+  // A JPEG whose entropy-coded middle is zeroed still has valid markers; only a decode can tell, and even
+  // then libjpeg may recover. Colour replaced by a depth PNG is a format error in both modes.
+  fs::copy_file(depth_files_[0], rgb_files_[0], fs::copy_options::overwrite_existing);
+  SkipReport skips;
+  std::vector<std::string> warnings;
+  const auto frames = playAll(skips, warnings);
+  EXPECT_EQ(frames.size(), 4u);
+  EXPECT_EQ(skips.corrupt_files, 1);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("8-bit"), std::string::npos) << warnings[0];
+}
+
+TEST_F(DamagedFolder, SelectionStartEndEvery) {
+  TumSourceOptions options;
+  options.selection = {1, 5, 2};
+  TumSource source(indexSequence(dir_.string()), bonnCamera(), options);
+  EXPECT_EQ(source.size(), 2);
+  std::vector<int64_t> indices;
+  while (auto f = source.next()) indices.push_back(f->index);
+  EXPECT_EQ(indices, (std::vector<int64_t>{1, 3}));
+}
+
+TEST(Pacer, RealtimeFollowsStampsAndFastDoesNotWait) {
+  Pacer realtime(RateMode::kRealtime, 2.0);
+  const auto t0 = std::chrono::steady_clock::now();
+  realtime.waitUntilDue(10.0);
+  realtime.waitUntilDue(10.2);  // due 0.1 s after the first at speed 2
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GE(waited, 0.099);
+  EXPECT_LT(waited, 0.5);
+  Pacer fast(RateMode::kFast, 1.0);
+  const auto t1 = std::chrono::steady_clock::now();
+  fast.waitUntilDue(0.0);
+  fast.waitUntilDue(100.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 0.05);
+  EXPECT_THROW(parseRateMode("slow"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace bmp::capture
