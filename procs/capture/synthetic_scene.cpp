@@ -1,0 +1,103 @@
+#include "capture/synthetic_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "capture/synthetic_internals.hpp"
+
+namespace bmp::capture {
+
+using synth::SurfaceTexture;
+
+namespace {
+
+// Baked-in shading per face (x-, x+, y-, y+, floor/bottom, ceiling/top): fixed, so colour is view
+// independent and photometric tracking holds exactly.
+constexpr double kFaceShade[6] = {0.92, 0.84, 0.88, 1.0, 0.8, 0.72};
+
+void addBoxTextures(const AlignedBox& box, const SyntheticSceneConfig& c, uint64_t seed,
+                    std::vector<SurfaceTexture>& out) {
+  for (int face = 0; face < 6; ++face) {
+    const Eigen::Vector2d extent = synth::faceExtent(box, face);
+    synth::TextureStyle style;
+    style.texels_per_metre = c.texels_per_metre;
+    style.shapes_per_square_metre = c.shapes_per_square_metre;
+    style.brightness = kFaceShade[face];
+    out.emplace_back(synth::drawTexture(extent.x(), extent.y(), style, synth::mixSeed(seed, face)),
+                     c.texels_per_metre);
+  }
+}
+
+void validate(const SyntheticSceneConfig& c) {
+  const auto fail = [](const std::string& what) { throw std::invalid_argument("synthetic scene: " + what); };
+  if (c.camera.width <= 0 || c.camera.height <= 0 || c.camera.fx <= 0 || c.camera.fy <= 0 ||
+      c.camera.depth_scale <= 0)
+    fail("camera needs positive size, focal lengths and depth_scale");
+  if (c.num_frames < 0) fail("num_frames must not be negative");
+  if (c.fps <= 0) fail("fps must be positive");
+  if (c.texels_per_metre < 10 || c.texels_per_metre > 2000) fail("texels_per_metre must be in [10, 2000]");
+  if (c.shapes_per_square_metre < 0) fail("shapes_per_square_metre must not be negative");
+  if (c.num_moving_objects < 0) fail("num_moving_objects must not be negative");
+  for (double s : c.object_size)
+    if (s <= 0) fail("object_size must be positive");
+  if (c.max_depth <= 0 || c.max_depth * c.camera.depth_scale > 65535)
+    fail("max_depth * depth_scale must fit 16 bits");
+  if (c.depth_noise < 0 || c.color_noise < 0) fail("noise levels must not be negative");
+}
+
+}  // namespace
+
+SyntheticScene::SyntheticScene(const SyntheticSceneConfig& config)
+    : config_(config), in_(std::make_unique<Internals>()) {
+  validate(config_);
+  room_ = synth::roomBox(config_.room_size);
+  for (int i = 0; i < 3; ++i) {
+    const double reach = std::abs(config_.camera_amplitude[i]) + 0.1;
+    if (config_.camera_centre[i] - reach < room_.lo[i] || config_.camera_centre[i] + reach > room_.hi[i])
+      throw std::invalid_argument("synthetic scene: the camera path leaves the room");
+  }
+  static_boxes_ = synth::furnitureLayout(room_, config_.num_static_boxes);
+  const auto seed = static_cast<uint64_t>(config_.seed);
+  addBoxTextures(room_, config_, synth::mixSeed(seed, 10), in_->textures);
+  for (std::size_t i = 0; i < static_boxes_.size(); ++i)
+    addBoxTextures(static_boxes_[i], config_, synth::mixSeed(seed, 11, i), in_->textures);
+  in_->paths = synth::walkPaths(config_, room_);
+  for (int k = 0; k < config_.num_moving_objects; ++k)
+    addBoxTextures(synth::walkerAt(in_->paths[k], config_, 0.0).box, config_, synth::mixSeed(seed, 12, k),
+                   in_->textures);
+  in_->motion = synth::cameraMotion(config_);
+  if (config_.color_noise > 0 || config_.depth_noise > 0)
+    in_->noise =
+        synth::unitNoiseTile(config_.camera.height + Internals::kNoiseMargin,
+                             3 * config_.camera.width + Internals::kNoiseMargin, synth::mixSeed(seed, 3));
+}
+
+SyntheticScene::~SyntheticScene() = default;
+SyntheticScene::SyntheticScene(SyntheticScene&&) noexcept = default;
+SyntheticScene& SyntheticScene::operator=(SyntheticScene&&) noexcept = default;
+
+double SyntheticScene::stamp(int index) const {
+  // Whole microseconds, so the stamp survives the 6-decimal TUM text formats exactly.
+  return config_.start_stamp + std::round(1e6 * index / config_.fps) * 1e-6;
+}
+
+SE3 SyntheticScene::cameraPose(int index) const {
+  return synth::cameraPoseAt(config_, in_->motion, index / config_.fps);
+}
+
+Trajectory SyntheticScene::groundTruth() const {
+  Trajectory out;
+  for (int i = 0; i < numFrames(); ++i) out.push_back({stamp(i), cameraPose(i)});
+  return out;
+}
+
+std::vector<MovingObjectState> SyntheticScene::movingObjects(int index) const {
+  std::vector<MovingObjectState> out;
+  for (const auto& path : in_->paths) out.push_back(synth::walkerAt(path, config_, index / config_.fps));
+  return out;
+}
+
+}  // namespace bmp::capture

@@ -1,0 +1,102 @@
+#pragma once
+// The built-in synthetic sequence: a textured box room with furniture, seen by a smoothly moving RGB-D
+// camera, with person-sized boxes walking through it. Renders colour, exact z-depth, ground-truth poses and
+// masks of the moving objects, deterministically from a seed. World frame: z up, floor at z = 0, room
+// centred on the origin in x and y. Camera frame: z forward, x right, y down.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "bmp/common/camera_model.hpp"
+#include "bmp/common/se3.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+
+namespace bmp::capture {
+
+struct SyntheticSceneConfig {
+  CameraIntrinsics camera;  // pinhole only: distortion is ignored
+  int num_frames = 300;
+  double fps = 30.0;
+  double start_stamp = 1000.0;  // seconds; frame i is at start_stamp + i / fps (rounded to microseconds)
+  int64_t seed = 1;
+
+  std::array<double, 3> room_size{6.0, 5.0, 3.0};  // x, y, height (m)
+  int num_static_boxes = 5;                        // furniture pieces along the walls, 0..5
+  double texels_per_metre = 200.0;                 // texture resolution
+  double shapes_per_square_metre = 70.0;           // density of drawn texture shapes
+
+  // Camera path: centre plus a sinusoid per axis; orientation looks along +y, then yaw, pitch, roll.
+  std::array<double, 3> camera_centre{0.0, -1.6, 1.4};
+  std::array<double, 3> camera_amplitude{0.7, 0.3, 0.15};        // m
+  std::array<double, 3> camera_period{11.0, 7.0, 5.0};           // s
+  double base_pitch_deg = -8.0;                                  // negative looks down
+  std::array<double, 3> rotation_amplitude_deg{18.0, 8.0, 6.0};  // yaw, pitch, roll
+  std::array<double, 3> rotation_period{9.0, 6.5, 8.0};          // s
+
+  int num_moving_objects = 2;
+  std::array<double, 3> object_size{0.5, 0.5, 1.7};  // width, depth, height (m)
+  double walk_speed = 1.0;                           // m/s
+
+  double max_depth = 8.0;    // m; farther pixels get depth 0
+  double depth_noise = 0.0;  // m, standard deviation at 1 m, growing with depth squared
+  double color_noise = 1.5;  // grey levels, standard deviation per channel
+};
+
+struct SyntheticFrame {
+  int index = 0;
+  double stamp = 0.0;
+  cv::Mat bgr;    // CV_8UC3
+  cv::Mat depth;  // CV_16UC1, depth_scale units per metre, 0 = no measurement
+  cv::Mat mask;   // CV_8UC1, 255 on moving objects
+  SE3 T_world_cam = SE3::Identity();
+};
+
+// An axis-aligned box in the world (room, furniture) or in an object's own frame.
+struct AlignedBox {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+};
+
+// A walking object at one instant: box [-w/2, w/2] x [-d/2, d/2] x [0, h] rotated by yaw about z.
+struct MovingObjectState {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // centre on the floor
+  double yaw = 0.0;                                    // radians about world z
+  SE3 T_world_object = SE3::Identity();
+  AlignedBox box;  // in the object frame
+};
+
+class SyntheticScene {
+ public:
+  // Builds every texture up front (a few hundred milliseconds); rendering is then cheap.
+  explicit SyntheticScene(const SyntheticSceneConfig& config);
+  ~SyntheticScene();
+  SyntheticScene(SyntheticScene&&) noexcept;
+  SyntheticScene& operator=(SyntheticScene&&) noexcept;
+
+  // Throws std::out_of_range outside [0, numFrames()).
+  SyntheticFrame render(int index) const;
+  int numFrames() const { return config_.num_frames; }
+  const CameraIntrinsics& camera() const { return config_.camera; }
+  const SyntheticSceneConfig& config() const { return config_; }
+
+  double stamp(int index) const;
+  SE3 cameraPose(int index) const;
+  Trajectory groundTruth() const;
+
+  // Geometry, for tests and visualisation.
+  const AlignedBox& room() const { return room_; }
+  const std::vector<AlignedBox>& staticBoxes() const { return static_boxes_; }
+  std::vector<MovingObjectState> movingObjects(int index) const;
+
+ private:
+  SyntheticSceneConfig config_;
+  AlignedBox room_;
+  std::vector<AlignedBox> static_boxes_;
+  struct Internals;  // textures, walking paths, motion phases, noise tile
+  std::unique_ptr<Internals> in_;
+};
+
+}  // namespace bmp::capture

@@ -1,0 +1,139 @@
+// The synthetic scene's configuration, its FrameSource and the TUM folder writer.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bmp/common/config.hpp"
+#include "bmp/common/image_codec.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+#include "capture/synthetic_config.hpp"
+#include "capture/synthetic_source.hpp"
+#include "capture/tum_folder_writer.hpp"
+#include "shared_data.hpp"
+
+namespace bmp::capture {
+namespace {
+
+SyntheticSceneConfig shortSequence(int frames) {
+  SyntheticSceneConfig c;
+  c.num_frames = frames;
+  c.texels_per_metre = 100;  // quicker to build; the geometry is the same
+  return c;
+}
+
+TEST(SyntheticConfig, ShippedFileIsCompleteAndMatchesTheDefaults) {
+  const Config file = Config::fromFile(test::sourceDir() + "/config/synthetic.yaml");
+  const SyntheticSceneConfig c = syntheticSceneFromConfig(file.section("synthetic"));
+  EXPECT_NO_THROW(file.finish());
+  const SyntheticSceneConfig d;
+  EXPECT_EQ(c.camera.width, d.camera.width);
+  EXPECT_EQ(c.camera.height, d.camera.height);
+  EXPECT_EQ(c.camera.fx, d.camera.fx);
+  EXPECT_EQ(c.camera.fy, d.camera.fy);
+  EXPECT_EQ(c.camera.cx, d.camera.cx);
+  EXPECT_EQ(c.camera.cy, d.camera.cy);
+  EXPECT_EQ(c.camera.depth_scale, d.camera.depth_scale);
+  EXPECT_EQ(c.num_frames, d.num_frames);
+  EXPECT_EQ(c.fps, d.fps);
+  EXPECT_EQ(c.start_stamp, d.start_stamp);
+  EXPECT_EQ(c.seed, d.seed);
+  EXPECT_EQ(c.room_size, d.room_size);
+  EXPECT_EQ(c.num_static_boxes, d.num_static_boxes);
+  EXPECT_EQ(c.texels_per_metre, d.texels_per_metre);
+  EXPECT_EQ(c.shapes_per_square_metre, d.shapes_per_square_metre);
+  EXPECT_EQ(c.camera_centre, d.camera_centre);
+  EXPECT_EQ(c.camera_amplitude, d.camera_amplitude);
+  EXPECT_EQ(c.camera_period, d.camera_period);
+  EXPECT_EQ(c.base_pitch_deg, d.base_pitch_deg);
+  EXPECT_EQ(c.rotation_amplitude_deg, d.rotation_amplitude_deg);
+  EXPECT_EQ(c.rotation_period, d.rotation_period);
+  EXPECT_EQ(c.num_moving_objects, d.num_moving_objects);
+  EXPECT_EQ(c.object_size, d.object_size);
+  EXPECT_EQ(c.walk_speed, d.walk_speed);
+  EXPECT_EQ(c.max_depth, d.max_depth);
+  EXPECT_EQ(c.depth_noise, d.depth_noise);
+  EXPECT_EQ(c.color_noise, d.color_noise);
+}
+
+TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
+  const Config ok = Config::fromString(
+      "synthetic: {seed: 9, num_moving_objects: 0, room_size: [7, 6, 3.5], camera: {fx: 500}}", "test");
+  const SyntheticSceneConfig c = syntheticSceneFromConfig(ok.section("synthetic"));
+  EXPECT_EQ(c.seed, 9);
+  EXPECT_EQ(c.num_moving_objects, 0);
+  EXPECT_EQ(c.room_size[1], 6.0);
+  EXPECT_EQ(c.camera.fx, 500.0);
+  EXPECT_EQ(c.camera.fy, 525.0);
+  const Config short_list = Config::fromString("synthetic: {room_size: [7, 6]}", "test");
+  EXPECT_THROW(syntheticSceneFromConfig(short_list.section("synthetic")), ConfigError);
+  SyntheticSceneConfig tiny;
+  tiny.room_size = {2, 2, 2};
+  EXPECT_THROW(SyntheticScene{tiny}, std::invalid_argument);
+}
+
+TEST(SyntheticSource, DeliversRawFramesWithGroundTruthAndMasks) {
+  auto scene = std::make_shared<const SyntheticScene>(shortSequence(3));
+  SyntheticSource source(scene);
+  EXPECT_EQ(source.size(), 3);
+  EXPECT_EQ(source.camera().fx, 525.0);
+  for (int i = 0; i < 3; ++i) {
+    const auto frame = source.next();
+    ASSERT_TRUE(frame.has_value());
+    EXPECT_EQ(frame->index, i);
+    EXPECT_EQ(frame->color.encoding, ImageEncoding::kRaw);
+    EXPECT_EQ(frame->color.pixel_format, PixelFormat::kBgr8);
+    EXPECT_EQ(frame->depth.pixel_format, PixelFormat::kMono16);
+    const SyntheticFrame expected = scene->render(i);
+    EXPECT_EQ(cv::norm(decodeImage(frame->color), expected.bgr, cv::NORM_INF), 0);
+    EXPECT_EQ(cv::norm(decodeImage(frame->depth), expected.depth, cv::NORM_INF), 0);
+    EXPECT_EQ(frame->dynamic_mask.type(), CV_8UC1);
+    ASSERT_TRUE(frame->T_world_cam_true.has_value());
+    EXPECT_TRUE(frame->T_world_cam_true->isApprox(expected.T_world_cam));
+    EXPECT_EQ(frame->stamp, expected.stamp);
+  }
+  EXPECT_FALSE(source.next().has_value());
+  EXPECT_EQ(source.skips().total(), 0);
+}
+
+TEST(TumFolderWriter, WritesAFolderThatReadsBack) {
+  const SyntheticScene scene(shortSequence(4));
+  const std::string dir = test::scratchDir("synthetic_tum").string();
+  int calls = 0;
+  writeTumFolder(scene, dir, [&](int done, int total) {
+    EXPECT_EQ(done, ++calls);
+    EXPECT_EQ(total, 4);
+  });
+  EXPECT_EQ(calls, 4);
+  const Trajectory gt = readTumTrajectory(dir + "/groundtruth.txt");
+  ASSERT_EQ(gt.size(), 4u);
+  std::ifstream rgb_list(dir + "/rgb.txt"), depth_list(dir + "/depth.txt");
+  std::string line;
+  int listed = 0;
+  while (std::getline(rgb_list, line)) listed += (!line.empty() && line[0] != '#') ? 1 : 0;
+  EXPECT_EQ(listed, 4);
+  for (int i = 0; i < 4; ++i) {
+    const SyntheticFrame f = scene.render(i);
+    EXPECT_NEAR(gt[i].stamp, f.stamp, 1e-9);
+    EXPECT_LT((gt[i].T_world_cam.translation() - f.T_world_cam.translation()).norm(), 1e-6);
+    EXPECT_LT(rotationAngle(gt[i].T_world_cam.inverse() * f.T_world_cam), 1e-6);
+    char name[64];
+    std::snprintf(name, sizeof(name), "%.6f.png", f.stamp);
+    const cv::Mat rgb = cv::imread(dir + "/rgb/" + name, cv::IMREAD_UNCHANGED);
+    const cv::Mat depth = cv::imread(dir + "/depth/" + name, cv::IMREAD_UNCHANGED);
+    const cv::Mat mask = cv::imread(dir + "/mask/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(rgb.type(), CV_8UC3);
+    ASSERT_EQ(depth.type(), CV_16UC1);
+    ASSERT_EQ(mask.type(), CV_8UC1);
+    EXPECT_EQ(rgb.size(), cv::Size(640, 480));
+    EXPECT_EQ(cv::norm(rgb, f.bgr, cv::NORM_INF), 0);
+    EXPECT_EQ(cv::norm(depth, f.depth, cv::NORM_INF), 0);
+    EXPECT_EQ(cv::norm(mask, f.mask, cv::NORM_INF), 0);
+  }
+}
+
+}  // namespace
+}  // namespace bmp::capture
