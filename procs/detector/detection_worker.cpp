@@ -1,0 +1,75 @@
+#include "detector/detection_worker.hpp"
+
+#include "bmp/common/timing.hpp"
+
+namespace bmp::detector {
+
+FrameResult processFrame(Detector& detector, const FrameJob& job) {
+  FrameResult result;
+  result.seq = job.seq;
+  result.utime = job.utime;
+  const Stopwatch watch;
+  cv::Mat bgr;
+  try {
+    bgr = decodeImage(job.color);
+  } catch (const ImageError& e) {
+    result.error = std::string("colour image: ") + e.what();
+    return result;
+  }
+  if (bgr.type() != CV_8UC3) {
+    result.error = "colour image is not 3-channel 8-bit";
+    return result;
+  }
+  result.detections = detector.detect(bgr);
+  result.width = bgr.cols;
+  result.height = bgr.rows;
+  result.total_ms = watch.elapsedMs();
+  result.ok = true;
+  return result;
+}
+
+DetectionWorker::DetectionWorker(Detector& detector, QueueMode mode, std::size_t capacity,
+                                 std::function<void()> on_result)
+    : detector_(detector),
+      slot_(mode, capacity),
+      on_result_(std::move(on_result)),
+      thread_([this] { run(); }) {}
+
+DetectionWorker::~DetectionWorker() {
+  stopping_ = true;
+  slot_.close();
+  thread_.join();
+}
+
+std::size_t DetectionWorker::submit(FrameJob job) {
+  return slot_.push(std::move(job));
+}
+
+std::vector<FrameResult> DetectionWorker::takeResults() {
+  std::lock_guard<std::mutex> lock(results_mutex_);
+  std::vector<FrameResult> out;
+  out.swap(results_);
+  return out;
+}
+
+void DetectionWorker::run() {
+  while (auto job = slot_.pop()) {
+    if (stopping_) break;
+    FrameResult result;
+    try {
+      result = processFrame(detector_, *job);
+    } catch (const std::exception& e) {
+      // OpenCV may throw on an image it cannot handle: report it for this frame and keep going.
+      result.seq = job->seq;
+      result.utime = job->utime;
+      result.error = std::string("detection failed: ") + e.what();
+    }
+    {
+      std::lock_guard<std::mutex> lock(results_mutex_);
+      results_.push_back(std::move(result));
+    }
+    if (on_result_) on_result_();
+  }
+}
+
+}  // namespace bmp::detector

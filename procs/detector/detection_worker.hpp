@@ -1,0 +1,63 @@
+#pragma once
+// Inference on its own thread (the paper's detection thread): frames go in through a FrameSlot, results
+// come out through takeResults(), so the thread that owns the LCM connection never waits for the network.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bmp/common/image_codec.hpp"
+#include "detector/detector.hpp"
+#include "detector/frame_slot.hpp"
+
+namespace bmp::detector {
+
+struct FrameJob {
+  int64_t seq = 0;
+  int64_t utime = 0;
+  EncodedImage color;  // decoded on the worker: decoding is part of the detector's time
+};
+
+struct FrameResult {
+  int64_t seq = 0;
+  int64_t utime = 0;
+  bool ok = false;
+  std::string error;  // why the frame was skipped, when !ok
+  std::vector<Detection> detections;
+  int width = 0;
+  int height = 0;
+  double total_ms = 0.0;  // decode + letterbox + inference + NMS
+};
+
+// Decodes and detects one frame; an undecodable image gives !ok with the reason.
+FrameResult processFrame(Detector& detector, const FrameJob& job);
+
+class DetectionWorker {
+ public:
+  // on_result is called on the worker thread after each result is queued (e.g. Wakeup::notify).
+  DetectionWorker(Detector& detector, QueueMode mode, std::size_t capacity,
+                  std::function<void()> on_result = nullptr);
+  ~DetectionWorker();  // finishes the frame in progress, discards the rest
+  DetectionWorker(const DetectionWorker&) = delete;
+  DetectionWorker& operator=(const DetectionWorker&) = delete;
+
+  // Returns how many waiting frames this one displaced ("latest" mode); may wait in "every" mode.
+  std::size_t submit(FrameJob job);
+  // Results finished since the last call, in processing order.
+  std::vector<FrameResult> takeResults();
+
+ private:
+  void run();
+  Detector& detector_;
+  FrameSlot<FrameJob> slot_;
+  std::function<void()> on_result_;
+  std::mutex results_mutex_;
+  std::vector<FrameResult> results_;
+  std::atomic<bool> stopping_{false};
+  std::thread thread_;  // last: starts after everything it uses exists
+};
+
+}  // namespace bmp::detector

@@ -1,0 +1,39 @@
+#include "detector/detector.hpp"
+
+#include <opencv2/core/utility.hpp>
+
+#include "detector/letterbox.hpp"
+
+namespace bmp::detector {
+
+namespace {
+ModelSpec withThreads(const DetectorConfig& config) {
+  // Before the model's test inference, so that one already runs with the configured threads.
+  cv::setNumThreads(config.threads);
+  return config.modelSpec();
+}
+}  // namespace
+
+Detector::Detector(const DetectorConfig& config, const Config& dynamic_classes)
+    : config_(config),
+      model_(withThreads(config)),
+      levels_(DynamicClassTable::fromConfig(dynamic_classes, model_.classNames())) {}
+
+std::vector<Detection> Detector::detect(const cv::Mat& bgr) {
+  const LetterboxTransform transform = letterbox(bgr, model_.inputSize(), square_);
+  const cv::Mat rows = model_.infer(square_);
+  const auto kept =
+      nmsPerClass(model_.decode(rows, config_.conf_threshold), config_.nms_threshold, config_.max_detections);
+  const cv::Rect2f image_rect(0, 0, static_cast<float>(bgr.cols), static_cast<float>(bgr.rows));
+  std::vector<Detection> detections;
+  detections.reserve(kept.size());
+  for (const auto& c : kept) {
+    const cv::Rect2f box = transform.toImage(c.box) & image_rect;
+    if (box.area() <= 0.0f) continue;
+    const std::string& label = model_.classNames()[c.class_id];
+    detections.push_back({box, c.class_id, label, c.score, levels_.levelOf(label)});
+  }
+  return detections;
+}
+
+}  // namespace bmp::detector

@@ -1,0 +1,156 @@
+// bmp-detector: YOLO detections, each box tagged with its dynamic level, for every RGB-D frame it processes.
+// The LCM thread only receives and publishes; inference runs on the DetectionWorker's thread.
+#include <poll.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <bmp/detections_t.hpp>
+#include <bmp/rgbd_frame_t.hpp>
+
+#include "bmp/common/log.hpp"
+#include "bmp/lcm/conversions.hpp"
+#include "bmp/lcm/process.hpp"
+#include "detector/detection_worker.hpp"
+#include "detector/detector.hpp"
+#include "detector/wakeup.hpp"
+
+namespace {
+
+using namespace bmp::detector;
+
+static_assert(static_cast<int>(DynamicLevel::kHigh) == bmp::detection_t::LEVEL_HIGH &&
+              static_cast<int>(DynamicLevel::kMedium) == bmp::detection_t::LEVEL_MEDIUM &&
+              static_cast<int>(DynamicLevel::kLow) == bmp::detection_t::LEVEL_LOW);
+
+bmp::detections_t toMsg(const FrameResult& result, const std::string& model) {
+  bmp::detections_t msg;
+  msg.utime = result.utime;
+  msg.seq = result.seq;
+  msg.model = model;
+  msg.inference_ms = static_cast<float>(result.total_ms);
+  msg.image_width = result.width;
+  msg.image_height = result.height;
+  for (const auto& d : result.detections) {
+    bmp::detection_t box;
+    box.x = d.box.x;
+    box.y = d.box.y;
+    box.width = d.box.width;
+    box.height = d.box.height;
+    box.class_id = static_cast<int16_t>(d.class_id);
+    box.label = d.label;
+    box.score = d.score;
+    box.dynamic_level = static_cast<int8_t>(d.level);
+    msg.detections.push_back(std::move(box));
+  }
+  msg.num_detections = static_cast<int32_t>(msg.detections.size());
+  return msg;
+}
+
+// A relative path in the configuration is relative to the folder of the file that names it.
+std::string besideConfig(const bmp::Config& config, const std::string& path) {
+  if (std::filesystem::path(path).is_absolute()) return path;
+  const std::filesystem::path origin(config.origin());
+  const auto dir = std::filesystem::is_regular_file(origin) ? origin.parent_path()
+                                                            : std::filesystem::path(bmp::configDir());
+  return (dir / path).string();
+}
+
+int run(bmp::ProcessContext& ctx) {
+  const DetectorConfig config = detectorConfigFromYaml(ctx.config);
+  const std::string dynamic_path =
+      besideConfig(ctx.config, ctx.config.get<std::string>("dynamic_classes", "dynamic_classes.yaml"));
+  const bmp::Config process = ctx.config.section("process");
+  std::string mode_text = process.get<std::string>("mode", "latest");
+  const int capacity = process.get<int>("queue_capacity", 64);
+  const bmp::Config channels = ctx.config.section("channels");
+  const std::string frames_channel = channels.get<std::string>("frames", "RGBD_FRAME");
+  const std::string detections_channel = channels.get<std::string>("detections", "DETECTIONS");
+  if (ctx.args.given("mode")) mode_text = ctx.args.value("mode");
+  QueueMode mode{};
+  try {
+    mode = parseQueueMode(mode_text);
+  } catch (const std::invalid_argument& e) {
+    throw bmp::ConfigError(ctx.config.origin() + ": key 'process.mode' or --mode: " + e.what());
+  }
+  if (capacity < 1)
+    throw bmp::ConfigError(ctx.config.origin() + ": key 'process.queue_capacity' must be >= 1");
+  bmp::finishConfig(ctx);
+
+  // A missing or broken model is a configuration error: exit code 2 before any frame is read.
+  std::optional<Detector> detector_storage;
+  try {
+    detector_storage.emplace(config, bmp::Config::fromFile(dynamic_path));
+  } catch (const ModelError& e) {
+    throw bmp::ConfigError(e.what());
+  }
+  Detector& detector = *detector_storage;
+  bmp::log::info("model ", detector.modelName(), " (", config.modelSpec().path, ") ready; mode ",
+                 toString(mode), ", ", frames_channel, " -> ", detections_channel);
+
+  Wakeup wakeup;
+  DetectionWorker worker(detector, mode, static_cast<std::size_t>(capacity), [&wakeup] { wakeup.notify(); });
+  ctx.lcm.subscribe<bmp::rgbd_frame_t>(
+      frames_channel, [&](const bmp::rgbd_frame_t& msg, const bmp::ReceivedInfo&) {
+        ctx.status.received();
+        FrameJob job;
+        job.seq = msg.seq;
+        job.utime = msg.utime;
+        try {
+          job.color = bmp::fromMsg(msg.color);
+        } catch (const bmp::ImageError& e) {
+          const std::string warning =
+              "frame seq " + std::to_string(msg.seq) + ": colour image: " + e.what() + "; skipped";
+          bmp::log::warn(warning);
+          ctx.status.malformed();
+          ctx.status.setMessage(warning);
+          return;
+        }
+        ctx.status.dropped(static_cast<int64_t>(worker.submit(std::move(job))));
+      });
+  ctx.status.tick(true);  // the first heartbeat also tells others we are subscribed
+
+  const std::string model_name = detector.modelName();
+  while (!ctx.stop.requested()) {
+    pollfd fds[2] = {{ctx.lcm.raw().getFileno(), POLLIN, 0}, {wakeup.fd(), POLLIN, 0}};
+    if (poll(fds, 2, 200) > 0 && (fds[0].revents & POLLIN) && !ctx.lcm.handle(0)) {
+      bmp::log::error("LCM receive failed");
+      return 1;
+    }
+    wakeup.clear();
+    for (const auto& result : worker.takeResults()) {
+      if (!result.ok) {
+        const std::string warning =
+            "frame seq " + std::to_string(result.seq) + ": " + result.error + "; skipped";
+        bmp::log::warn(warning);
+        ctx.status.malformed();
+        ctx.status.setMessage(warning);
+        continue;
+      }
+      ctx.lcm.publish(detections_channel, toMsg(result, model_name));
+      ctx.status.processed();
+      ctx.status.published();
+    }
+    ctx.status.tick();
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bmp::ProcessSpec spec;
+  spec.name = "bmp-detector";
+  spec.summary =
+      "Runs YOLO (OpenCV DNN) on the colour image of each RGB-D frame and publishes the boxes, each with its "
+      "class, score and dynamic level (high / medium / low, config/dynamic_classes.yaml). In mode 'latest' "
+      "a frame arriving while the detector is busy replaces the waiting one (drops are counted in "
+      "PROCESS_STATUS); in mode 'every' every frame is processed, for lockstep runs.";
+  spec.default_config = "detector.yaml";
+  spec.add_options = [](bmp::ArgParser& args) {
+    args.addOption("mode", "latest|every", "override process.mode of the configuration");
+  };
+  spec.run = run;
+  return bmp::runProcess(argc, argv, spec);
+}

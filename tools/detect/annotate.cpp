@@ -1,0 +1,80 @@
+#include "annotate.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+namespace bmp::detect_tools {
+
+using detector::DynamicLevel;
+
+cv::Scalar levelColour(DynamicLevel level) {
+  switch (level) {
+    case DynamicLevel::kHigh:
+      return {0, 0, 255};
+    case DynamicLevel::kMedium:
+      return {0, 165, 255};
+    case DynamicLevel::kLow:
+      break;
+  }
+  return {0, 200, 0};
+}
+
+void drawDetections(cv::Mat& bgr, const std::vector<detector::Detection>& detections) {
+  const int thickness = std::max(1, std::min(bgr.cols, bgr.rows) / 240);
+  const double font_scale = std::max(0.4, std::min(bgr.cols, bgr.rows) / 900.0);
+  // Lowest score first, so the most confident labels end up on top.
+  for (auto it = detections.rbegin(); it != detections.rend(); ++it) {
+    const cv::Scalar colour = levelColour(it->level);
+    const cv::Rect box(it->box);
+    cv::rectangle(bgr, box, colour, thickness);
+    char text[96];
+    std::snprintf(text, sizeof(text), "%s %.2f", it->label.c_str(), it->score);
+    int baseline = 0;
+    const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, font_scale, 1, &baseline);
+    const int top = box.y - size.height - baseline >= 0 ? box.y - size.height - baseline : box.y;
+    cv::rectangle(bgr, cv::Rect(box.x, top, size.width + 2, size.height + baseline), colour, cv::FILLED);
+    cv::putText(bgr, text, {box.x + 1, top + size.height}, cv::FONT_HERSHEY_SIMPLEX, font_scale,
+                cv::Scalar::all(255), 1, cv::LINE_AA);
+  }
+}
+
+namespace {
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+}  // namespace
+
+std::string detectionsJson(const std::string& image, double stamp, const std::string& model, int width,
+                           int height, double total_ms, const std::vector<detector::Detection>& detections) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "{\"image\": " << quoted(image) << ", \"stamp\": " << std::fixed << stamp << std::defaultfloat
+      << ", \"model\": " << quoted(model) << ", \"width\": " << width << ", \"height\": " << height
+      << ", \"total_ms\": " << total_ms << ", \"detections\": [";
+  for (std::size_t i = 0; i < detections.size(); ++i) {
+    const auto& d = detections[i];
+    out << (i ? ", " : "") << "{\"label\": " << quoted(d.label) << ", \"class_id\": " << d.class_id
+        << ", \"score\": " << d.score << ", \"level\": " << quoted(detector::toString(d.level))
+        << ", \"box\": [" << d.box.x << ", " << d.box.y << ", " << d.box.width << ", " << d.box.height
+        << "]}";
+  }
+  out << "]}";
+  return out.str();
+}
+
+}  // namespace bmp::detect_tools
