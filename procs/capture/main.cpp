@@ -12,6 +12,7 @@
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/lcm/frame_player.hpp"
+#include "capture/selected_source.hpp"
 #include "capture/synthetic_config.hpp"
 #include "capture/synthetic_source.hpp"
 #include "capture/tum_source.hpp"
@@ -45,6 +46,11 @@ void addOptions(ArgParser& args) {
       "Skipped files (missing, corrupt, wrong size) are reported with the reason and counted.\n");
 }
 
+// The configuration value is always read (so finish() accepts the file); the command line wins.
+std::string overridden(const ArgParser& args, const std::string& option, const std::string& config_value) {
+  return args.given(option) ? args.value(option) : config_value;
+}
+
 void waitForProcesses(ProcessContext& ctx, const std::string& names, double timeout_s) {
   std::set<std::string> pending;
   std::stringstream list(names);
@@ -72,17 +78,22 @@ std::unique_ptr<FrameSource> makeSource(ProcessContext& ctx, const Config& cfg) 
   const auto warn = [](const std::string& m) { log::warn(m); };
   const std::string synthetic_file = cfg.get<std::string>("synthetic_config", "synthetic.yaml");
   const double max_difference = cfg.get<double>("max_association_difference_s", 0.02);
-  const std::string verify =
-      args.given("verify") ? args.value("verify") : cfg.get<std::string>("verify", "header");
+  const std::string verify = overridden(args, "verify", cfg.get<std::string>("verify", "header"));
+  const FrameSelection selection{args.integer("start"), args.integer("end"), args.integer("every")};
   if (!args.given("dataset")) {
     const std::string path =
         args.given("synthetic-config") ? args.value("synthetic-config") : configDir() + "/" + synthetic_file;
     const Config synthetic = Config::fromFile(path);
     SyntheticSceneConfig scene_config = syntheticSceneFromConfig(synthetic.section("synthetic"));
     synthetic.finish();
-    return std::make_unique<SyntheticSource>(SyntheticScene(scene_config));
+    // Frames past --end are never rendered; --start/--every are applied by index.
+    if (selection.end >= 0)
+      scene_config.num_frames = static_cast<int>(std::min<int64_t>(scene_config.num_frames, selection.end));
+    return std::make_unique<SelectedSource>(std::make_unique<SyntheticSource>(scene_config), selection);
   }
   const std::string dir = args.value("dataset");
+  // The folder first: a missing folder must be reported as such, not as an unknown camera.
+  SequenceIndex index = indexSequence(dir, max_difference);
   std::string camera_file = args.value("camera");
   if (camera_file.empty()) camera_file = cameraFileFor(dir, configDir() + "/cameras");
   if (camera_file.empty())
@@ -94,10 +105,9 @@ std::unique_ptr<FrameSource> makeSource(ProcessContext& ctx, const Config& cfg) 
   camera_config.finish();
   log::info("camera from ", camera_file);
   TumSourceOptions options;
-  options.selection = {args.integer("start"), args.integer("end"), args.integer("every")};
+  options.selection = selection;
   options.verify = parseVerifyMode(verify);
   options.warn = warn;
-  SequenceIndex index = indexSequence(dir, max_difference);
   log::info(dir, ": ", index.frames.size(), " associated pairs from ", index.rgb_entries, " colour and ",
             index.depth_entries, " depth entries",
             index.groundtruth.empty() ? ", no ground truth" : ", with ground truth");
@@ -109,11 +119,9 @@ int run(ProcessContext& ctx) {
   PlayerOptions options;
   options.channel = cfg.get<std::string>("channel", options.channel);
   options.ack_channel = cfg.get<std::string>("ack_channel", options.ack_channel);
-  const std::string mode =
-      ctx.args.given("mode") ? ctx.args.value("mode") : cfg.get<std::string>("mode", "realtime");
-  options.mode = parseRateMode(mode);
-  options.speed =
-      ctx.args.given("speed") ? ctx.args.number("speed") : cfg.get<double>("speed", options.speed);
+  options.mode = parseRateMode(overridden(ctx.args, "mode", cfg.get<std::string>("mode", "realtime")));
+  const double speed = cfg.get<double>("speed", options.speed);
+  options.speed = ctx.args.given("speed") ? ctx.args.number("speed") : speed;
   options.lockstep_timeout_s = cfg.get<double>("lockstep_timeout_s", options.lockstep_timeout_s);
   options.progress_every_s = cfg.get<double>("progress_every_s", options.progress_every_s);
   options.masks_out = ctx.args.value("masks-out");

@@ -1,0 +1,30 @@
+#include "capture/selected_source.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace bmp::capture {
+
+SelectedSource::SelectedSource(std::unique_ptr<FrameSource> inner, FrameSelection selection)
+    : inner_(std::move(inner)), selection_(selection) {
+  if (selection_.every < 1) throw std::invalid_argument("frame selection: every must be >= 1");
+  if (selection_.start < 0) throw std::invalid_argument("frame selection: start must be >= 0");
+}
+
+int64_t SelectedSource::size() const {
+  const int64_t total = inner_->size();
+  const int64_t end = selection_.end < 0 ? total : std::min(total, selection_.end);
+  return end <= selection_.start ? 0 : (end - selection_.start + selection_.every - 1) / selection_.every;
+}
+
+std::optional<CapturedFrame> SelectedSource::next() {
+  while (auto frame = inner_->next()) {
+    if (selection_.end >= 0 && frame->index >= selection_.end) return std::nullopt;
+    if (frame->index < selection_.start || (frame->index - selection_.start) % selection_.every != 0)
+      continue;
+    return frame;
+  }
+  return std::nullopt;
+}
+
+}  // namespace bmp::capture

@@ -1,0 +1,70 @@
+// bmp-test-listener: a consumer process for integration tests. Receives RGBD_FRAME, checks that both images
+// decode, optionally answers each frame on SLAM_POSE (as the tracker does, for lockstep), and writes one
+// report line per frame: "seq utime depth_utime color_bytes depth_bytes decoded(0/1)".
+#include <fstream>
+
+#include <bmp/rgbd_frame_t.hpp>
+#include <bmp/slam_pose_t.hpp>
+
+#include "bmp/common/image_codec.hpp"
+#include "bmp/common/log.hpp"
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/conversions.hpp"
+#include "bmp/lcm/process.hpp"
+
+namespace {
+
+using namespace bmp;
+
+void addOptions(ArgParser& args) {
+  args.addOption("report", "FILE", "where the per-frame report goes");
+  args.addFlag("ack", "answer every frame with a slam_pose_t on SLAM_POSE carrying its seq");
+  args.addFlag("decode", "decode both images of every frame");
+  args.addOption("expect", "N", "exit once N frames arrived (0 = run until SIGINT)", "0");
+}
+
+int run(ProcessContext& ctx) {
+  finishConfig(ctx);
+  std::ofstream report(ctx.args.value("report"));
+  if (!report) throw std::runtime_error(ctx.args.value("report") + ": cannot write report");
+  const bool ack = ctx.args.flag("ack");
+  const bool decode = ctx.args.flag("decode");
+  const long long expect = ctx.args.integer("expect");
+  long long received = 0;
+  ctx.lcm.subscribe<rgbd_frame_t>("RGBD_FRAME", [&](const rgbd_frame_t& msg, const ReceivedInfo&) {
+    bool decoded = true;
+    if (decode) {
+      try {
+        decodeImage(fromMsg(msg.color));
+        decodeImage(fromMsg(msg.depth));
+      } catch (const ImageError& e) {
+        log::warn("frame ", msg.seq, ": ", e.what());
+        decoded = false;
+      }
+    }
+    report << msg.seq << " " << msg.utime << " " << msg.depth_utime << " " << msg.color.size << " "
+           << msg.depth.size << " " << (decoded ? 1 : 0) << "\n";
+    ++received;
+    ctx.status.received();
+    if (ack) {
+      slam_pose_t pose{};
+      pose.utime = msg.utime;
+      pose.seq = msg.seq;
+      ctx.lcm.publish("SLAM_POSE", pose);
+    }
+  });
+  while (!ctx.stop.requested() && (expect == 0 || received < expect)) {
+    ctx.lcm.handle(50);
+    ctx.status.tick();
+  }
+  report.flush();
+  log::info("received ", received, " frames");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bmp::runProcess(
+      argc, argv, {"bmp-test-listener", "Integration-test consumer of RGBD_FRAME.", "", addOptions, run});
+}

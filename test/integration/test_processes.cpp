@@ -1,0 +1,140 @@
+// Process-level behaviour: --help everywhere, configuration and input errors, and the launcher.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "bmp/common/child_process.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+#include "integration_support.hpp"
+
+namespace bmp {
+namespace {
+
+namespace fs = std::filesystem;
+using test::binPath;
+
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 60) {
+  const fs::path log = test::scratchDir("cmd_" + name) / "out.log";
+  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
+  Outcome o;
+  o.status = child.wait(timeout_s).value_or(-1);
+  o.output = test::readText(log.string());
+  return o;
+}
+
+// Every executable we ship answers --help with a usage text and exit status 0.
+TEST(Processes, EveryBinaryAnswersHelp) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(test::binaryDir() + "/bin")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("test_", 0) == 0 ||
+        (fs::status(entry).permissions() & fs::perms::owner_exec) == fs::perms::none)
+      continue;
+    const Outcome o = runCommand("help_" + name, {entry.path().string(), "--help"}, 30);
+    EXPECT_EQ(o.status, 0) << name << ": " << o.output;
+    EXPECT_NE(o.output.find("Usage"), std::string::npos) << name << ": " << o.output;
+    ++checked;
+  }
+  EXPECT_GE(checked, 4);  // bmp-capture, bmp-run, tum2lcm, bmp-test-listener at least
+}
+
+TEST(Processes, UnknownConfigKeyIsRefusedWithFileAndKey) {
+  const fs::path dir = test::scratchDir("bad_config");
+  std::ofstream(dir / "capture.yaml") << "capture:\n  mode: fast\n  sped: 2.0\n";
+  const Outcome o =
+      runCommand("bad_config", {binPath("bmp-capture"), "--config", (dir / "capture.yaml").string(),
+                                "--dataset", test::bonnDir(), "--lcm-url", "memq://"});
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("capture.sped"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find((dir / "capture.yaml").string()), std::string::npos) << o.output;
+}
+
+TEST(Processes, MissingDatasetAndBadOptionsAreClearErrors) {
+  const Outcome missing = runCommand(
+      "missing_dataset", {binPath("bmp-capture"), "--dataset", "/nonexistent/seq", "--lcm-url", "memq://"});
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.output.find("/nonexistent/seq"), std::string::npos) << missing.output;
+  const Outcome bad_mode =
+      runCommand("bad_mode", {binPath("bmp-capture"), "--mode", "slow", "--lcm-url", "memq://"});
+  EXPECT_NE(bad_mode.status, 0);
+  EXPECT_NE(bad_mode.output.find("slow"), std::string::npos) << bad_mode.output;
+  const Outcome unknown = runCommand("unknown_option", {binPath("bmp-capture"), "--frobnicate"});
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
+}
+
+// A killed consumer must not take the data with it: capture in realtime mode finishes on its own.
+TEST(Processes, CaptureSurvivesItsConsumerBeingKilled) {
+  const fs::path dir = test::scratchDir("killed_consumer");
+  const std::string url = test::uniqueLcmUrl(4);
+  ChildProcess listener(
+      {binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "r.txt").string()},
+      ChildProcess::Output::kFile, (dir / "listener.log").string());
+  ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
+                        "realtime", "--speed", "4", "--end", "200", "--wait-for", "bmp-test-listener"},
+                       ChildProcess::Output::kFile, (dir / "capture.log").string());
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  listener.signal(SIGKILL);
+  EXPECT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
+}
+
+fs::path writeRunConfig(const fs::path& dir, const std::string& listener_args) {
+  std::ofstream(dir / "run.yaml")
+      << "run:\n  output_root: " << (dir / "out").string()
+      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
+      << "  processes:\n    bmp-test-listener: " << listener_args << "\n  capture_args: []\n";
+  return dir / "run.yaml";
+}
+
+TEST(Launcher, RunsProcessesPlaysAndGathersOutputs) {
+  const fs::path dir = test::scratchDir("launcher_ok");
+  const fs::path config = writeRunConfig(dir, "[--ack, --report, \"{out}/listener.txt\"]");
+  const fs::path out = dir / "run";
+  const Outcome o = runCommand("launcher_ok",
+                               {binPath("bmp-run"), "--config", config.string(), "--dataset", test::bonnDir(),
+                                "--frames", "40", "--out", out.string(), "--lcm-url", test::uniqueLcmUrl(5)},
+                               120);
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_EQ(test::readReport((out / "listener.txt").string()).size(), 40u);
+  EXPECT_TRUE(fs::exists(out / "logs" / "bmp-capture.log"));
+  EXPECT_TRUE(fs::exists(out / "logs" / "bmp-test-listener.log"));
+  EXPECT_EQ(readTumTrajectory((out / "groundtruth.txt").string()).size(), 933u);
+}
+
+TEST(Launcher, SyntheticDefaultPlaysWithGroundTruth) {
+  const fs::path dir = test::scratchDir("launcher_synthetic");
+  const fs::path config = writeRunConfig(dir, "[--ack, --decode, --report, \"{out}/listener.txt\"]");
+  const fs::path out = dir / "run";
+  const Outcome o = runCommand("launcher_synthetic",
+                               {binPath("bmp-run"), "--config", config.string(), "--frames", "30", "--out",
+                                out.string(), "--lcm-url", test::uniqueLcmUrl(6)},
+                               120);
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto frames = test::readReport((out / "listener.txt").string());
+  ASSERT_EQ(frames.size(), 30u);
+  for (const auto& f : frames) EXPECT_EQ(f.decoded, 1);
+  EXPECT_EQ(readTumTrajectory((out / "groundtruth.txt").string()).size(), 30u);
+}
+
+TEST(Launcher, FailingProcessFailsTheRun) {
+  const fs::path dir = test::scratchDir("launcher_fail");
+  const fs::path config = writeRunConfig(dir, "[--no-such-option]");
+  const Outcome o =
+      runCommand("launcher_fail",
+                 {binPath("bmp-run"), "--config", config.string(), "--dataset", test::bonnDir(), "--frames",
+                  "40", "--out", (dir / "run").string(), "--lcm-url", test::uniqueLcmUrl(7)},
+                 120);
+  EXPECT_NE(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("bmp-test-listener ended early"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace bmp
