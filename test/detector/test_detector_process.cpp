@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -63,65 +66,101 @@ image_t fileImage(const std::string& path, ImageEncoding encoding, PixelFormat f
   return toMsg(std::move(image));
 }
 
-TEST(DetectorProcess, AnswersEveryFrameOverLcmAndSkipsAnUndecodableOne) {
-  const int port = 17000 + static_cast<int>(getpid() % 20000);
-  const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-  const auto scratch = test::scratchDir("detector_process");
-  const std::string log_path = (scratch / "bmp-detector.log").string();
+rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
+  rgbd_frame_t msg;
+  msg.seq = seq;
+  msg.utime = static_cast<int64_t>(frame.stamp * 1e6 + 0.5);
+  msg.depth_utime = msg.utime;
+  msg.source = "rgbd_bonn_crowd";
+  msg.depth_scale = 5000.0;
+  msg.color = fileImage(frame.color_path, ImageEncoding::kJpeg, PixelFormat::kBgr8);
+  msg.depth = fileImage(frame.depth_path, ImageEncoding::kPng, PixelFormat::kMono16);
+  return msg;
+}
 
-  LcmNode node(url);
-  std::map<int64_t, detections_t> answers;
-  std::vector<process_status_t> statuses;
-  node.subscribe<detections_t>("DETECTIONS", [&](const detections_t& msg, const ReceivedInfo&) {
-    EXPECT_EQ(answers.count(msg.seq), 0u) << "two answers for seq " << msg.seq;
-    answers[msg.seq] = msg;
-  });
-  node.subscribe<process_status_t>("PROCESS_STATUS", [&](const process_status_t& msg, const ReceivedInfo&) {
-    if (msg.name == "bmp-detector") statuses.push_back(msg);
-  });
-  const auto pump_until = [&](const std::function<bool()>& done, double timeout_s) {
+// One bmp-detector child on a test-unique LCM port, and what it publishes.
+class DetectorProcess : public ::testing::Test {
+ protected:
+  void start(const std::string& mode, int port_offset) {
+    const int port = 17000 + static_cast<int>(getpid() % 20000) + port_offset;
+    const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+    log_path_ = (test::scratchDir("detector_process_" + mode) / "bmp-detector.log").string();
+    node_ = std::make_unique<LcmNode>(url);
+    node_->subscribe<detections_t>("DETECTIONS", [this](const detections_t& msg, const ReceivedInfo&) {
+      EXPECT_EQ(answers_.count(msg.seq), 0u) << "two answers for seq " << msg.seq;
+      answers_[msg.seq] = msg;
+      order_.push_back(msg.seq);
+    });
+    node_->subscribe<process_status_t>("PROCESS_STATUS",
+                                       [this](const process_status_t& msg, const ReceivedInfo&) {
+                                         if (msg.name == "bmp-detector") statuses_.push_back(msg);
+                                       });
+    child_ =
+        std::make_unique<ChildProcess>(std::vector<std::string>{test::binPath("bmp-detector"), "--config",
+                                                                test::sourceDir() + "/config/detector.yaml",
+                                                                "--lcm-url", url, "--mode", mode},
+                                       ChildProcess::Output::kFile, log_path_);
+    // The first heartbeat comes once the model is loaded and the subscription is in place.
+    ASSERT_TRUE(pumpUntil([&] { return !statuses_.empty() || !child_->running(); }, 60.0))
+        << "no heartbeat; log in " << log_path_;
+    ASSERT_TRUE(child_->running()) << "bmp-detector exited; log in " << log_path_;
+  }
+
+  bool pumpUntil(const std::function<bool()>& done, double timeout_s) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (!done() && std::chrono::steady_clock::now() < end) node.handle(50);
+    while (!done() && std::chrono::steady_clock::now() < end) node_->handle(50);
     return done();
-  };
+  }
 
-  ChildProcess detector({test::binPath("bmp-detector"), "--config",
-                         test::sourceDir() + "/config/detector.yaml", "--lcm-url", url, "--mode", "every"},
-                        ChildProcess::Output::kFile, log_path);
-  // The first heartbeat comes once the model is loaded and the subscription is in place.
-  ASSERT_TRUE(pump_until([&] { return !statuses.empty() || !detector.running(); }, 60.0))
-      << "no heartbeat; log in " << log_path;
-  ASSERT_TRUE(detector.running()) << "bmp-detector exited; log in " << log_path;
+  // SIGINT; returns the final heartbeat (state FINISHED).
+  process_status_t stop() {
+    EXPECT_EQ(child_->stop(15.0), 0) << "log in " << log_path_;
+    pumpUntil(
+        [&] { return !statuses_.empty() && statuses_.back().state == process_status_t::STATE_FINISHED; },
+        2.0);
+    EXPECT_FALSE(statuses_.empty());
+    return statuses_.empty() ? process_status_t{} : statuses_.back();
+  }
 
+  std::string log() const {
+    std::ifstream in(log_path_);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  std::unique_ptr<LcmNode> node_;
+  std::unique_ptr<ChildProcess> child_;
+  std::string log_path_;
+  std::map<int64_t, detections_t> answers_;
+  std::vector<int64_t> order_;
+  std::vector<process_status_t> statuses_;
+};
+
+TEST_F(DetectorProcess, EveryModeAnswersEachFrameAndSkipsAnUndecodableOne) {
+  ASSERT_NO_FATAL_FAILURE(start("every", 0));
   constexpr int kBadSeq = 4;
   const auto frames = bonnFrames(445, 10);  // three people walk through these
   ASSERT_EQ(frames.size(), 10u);
   std::map<int64_t, int64_t> sent_utime;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    rgbd_frame_t msg;
-    msg.seq = static_cast<int64_t>(i);
-    msg.utime = static_cast<int64_t>(frames[i].stamp * 1e6 + 0.5);
-    msg.depth_utime = msg.utime;
-    msg.source = "rgbd_bonn_crowd";
-    msg.depth_scale = 5000.0;
-    msg.color = fileImage(frames[i].color_path, ImageEncoding::kJpeg, PixelFormat::kBgr8);
-    msg.depth = fileImage(frames[i].depth_path, ImageEncoding::kPng, PixelFormat::kMono16);
+    rgbd_frame_t msg = frameMessage(static_cast<int64_t>(i), frames[i]);
     if (msg.seq == kBadSeq) {
       msg.color.data.assign(5000, 0x5a);  // a JPEG that is not one
       msg.color.size = static_cast<int32_t>(msg.color.data.size());
     }
     sent_utime[msg.seq] = msg.utime;
-    node.publish("RGBD_FRAME", msg);
-    node.handle(30);
+    node_->publish("RGBD_FRAME", msg);
+    node_->handle(30);
   }
-  ASSERT_TRUE(pump_until([&] { return answers.size() >= frames.size() - 1; }, 60.0))
-      << answers.size() << " answers; log in " << log_path;
-  pump_until([] { return false; }, 0.5);  // nothing more may come
+  ASSERT_TRUE(pumpUntil([&] { return answers_.size() >= frames.size() - 1; }, 60.0))
+      << answers_.size() << " answers; log in " << log_path_;
+  pumpUntil([] { return false; }, 0.5);  // nothing more may come
 
-  EXPECT_EQ(answers.size(), frames.size() - 1);
-  EXPECT_EQ(answers.count(kBadSeq), 0u);
+  EXPECT_EQ(answers_.size(), frames.size() - 1);
+  EXPECT_EQ(answers_.count(kBadSeq), 0u);
   int persons = 0;
-  for (const auto& [seq, msg] : answers) {
+  for (const auto& [seq, msg] : answers_) {
     EXPECT_EQ(msg.utime, sent_utime.at(seq)) << "seq " << seq;
     EXPECT_EQ(msg.model, "yolov5n_coco_320");
     EXPECT_EQ(msg.image_width, 640);
@@ -137,26 +176,41 @@ TEST(DetectorProcess, AnswersEveryFrameOverLcmAndSkipsAnUndecodableOne) {
       }
     }
   }
-  EXPECT_GE(persons, 2 * static_cast<int>(answers.size()));
+  EXPECT_GE(persons, 2 * static_cast<int>(answers_.size()));
 
-  EXPECT_EQ(detector.stop(15.0), 0) << "log in " << log_path;
-  pump_until([&] { return !statuses.empty() && statuses.back().state == process_status_t::STATE_FINISHED; },
-             2.0);
-  ASSERT_FALSE(statuses.empty());
-  const auto& last = statuses.back();
+  const process_status_t last = stop();
   EXPECT_EQ(static_cast<int>(last.state), static_cast<int>(process_status_t::STATE_FINISHED));
   EXPECT_EQ(last.received, 10);
   EXPECT_EQ(last.processed, 9);
   EXPECT_EQ(last.malformed, 1);
   EXPECT_EQ(last.dropped, 0);
   EXPECT_NE(last.message.find("seq " + std::to_string(kBadSeq)), std::string::npos) << last.message;
-
-  std::ifstream log_file(log_path);
-  std::stringstream log;
-  log << log_file.rdbuf();
-  EXPECT_NE(log.str().find("frame seq " + std::to_string(kBadSeq) + ": colour image: undecodable"),
+  EXPECT_NE(log().find("frame seq " + std::to_string(kBadSeq) + ": colour image: undecodable"),
             std::string::npos)
-      << log.str();
+      << log();
+}
+
+TEST_F(DetectorProcess, LatestModeWorksOnTheNewestFrameAndCountsDrops) {
+  ASSERT_NO_FATAL_FAILURE(start("latest", 1));
+  const auto frames = bonnFrames(445, 20);
+  ASSERT_EQ(frames.size(), 20u);
+  std::vector<rgbd_frame_t> messages;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    messages.push_back(frameMessage(static_cast<int64_t>(i), frames[i]));
+  // Far faster than inference: most frames find the detector busy.
+  for (const auto& msg : messages) node_->publish("RGBD_FRAME", msg);
+  ASSERT_TRUE(pumpUntil([&] { return answers_.count(19) == 1; }, 30.0))
+      << "the newest frame was not answered; log in " << log_path_;
+  pumpUntil([] { return false; }, 0.5);
+
+  EXPECT_LT(answers_.size(), frames.size());
+  EXPECT_TRUE(std::is_sorted(order_.begin(), order_.end()));
+  const process_status_t last = stop();
+  EXPECT_EQ(last.received, 20);
+  EXPECT_GT(last.dropped, 0);
+  EXPECT_EQ(last.processed, static_cast<int64_t>(answers_.size()));
+  EXPECT_EQ(last.processed + last.dropped, last.received);
+  EXPECT_EQ(last.malformed, 0);
 }
 
 }  // namespace
