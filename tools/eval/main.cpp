@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
       throw bmp::ArgError("bmp-eval: --gt FILE and --est FILE are required (see --help)");
     // Evaluate option values up front so a typo is a command-line error, not bad input.
     for (const char* name : {"max-diff", "offset", "scale", "rpe-delta"}) args.number(name);
-  } catch (const bmp::ArgError& e) {
+    bmp::eval::parseDeltaUnit(args.value("rpe-unit"));
+  } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;
   }

@@ -1,0 +1,93 @@
+// Runs the bmp-eval executable: exit codes, one-line errors, the written outputs.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "eval_test_util.hpp"
+#include "shared_data.hpp"
+
+namespace bmp::eval {
+
+namespace {
+struct CliRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun runEval(const std::filesystem::path& dir, const std::string& arguments) {
+  const std::string out = (dir / "stdout.txt").string();
+  const std::string err = (dir / "stderr.txt").string();
+  CliRun r;
+  r.status = test::runCommand("'" + bmp::test::binPath("bmp-eval") + "' " + arguments + " >'" + out +
+                              "' 2>'" + err + "'");
+  r.out = test::readText(out);
+  r.err = test::readText(err);
+  return r;
+}
+
+std::string gtPath() {
+  return bmp::test::bonnDir() + "/groundtruth.txt";
+}
+
+int lineCount(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+}  // namespace
+
+TEST(evalCli, SelfComparisonWritesAllOutputs) {
+  const auto dir = bmp::test::scratchDir("eval_cli_ok");
+  const CliRun r =
+      runEval(dir, "--gt '" + gtPath() + "' --est '" + gtPath() + "' --label self --json '" +
+                       (dir / "r.json").string() + "' --aligned '" + (dir / "aligned.txt").string() +
+                       "' --plot-dir '" + (dir / "plots").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("ATE"), std::string::npos);
+  EXPECT_NE(r.out.find("RPE"), std::string::npos);
+  EXPECT_NE(r.out.find("rmse        0.000000 m"), std::string::npos) << r.out;
+  const std::string json = test::readText((dir / "r.json").string());
+  EXPECT_NE(json.find("\"label\": \"self\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"rotation_deg\""), std::string::npos) << json;
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_trajectory.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_errors.png"));
+  EXPECT_GT(std::filesystem::file_size(dir / "aligned.txt"), 10'000u);
+}
+
+TEST(evalCli, HelpAndBadCommandLine) {
+  const auto dir = bmp::test::scratchDir("eval_cli_help");
+  const CliRun help = runEval(dir, "--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--rpe-unit"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("Example"), std::string::npos) << help.out;
+  EXPECT_EQ(runEval(dir, "--gt x").status, 1);
+  EXPECT_EQ(runEval(dir, "--gt x --est y --max-diff abc").status, 1);
+  const CliRun unit = runEval(dir, "--gt x --est y --rpe-unit m");
+  EXPECT_EQ(unit.status, 1);
+  EXPECT_NE(unit.err.find("unknown RPE delta unit 'm'"), std::string::npos) << unit.err;
+}
+
+TEST(evalCli, BadInputIsOneLineNamingTheFileAndExitTwo) {
+  const auto dir = bmp::test::scratchDir("eval_cli_bad");
+  const std::string bad = (dir / "bad.txt").string();
+  test::writeText(bad, "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0\n");
+  CliRun r = runEval(dir, "--gt '" + gtPath() + "' --est '" + bad + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(bad + ":2"), std::string::npos) << r.err;
+
+  const std::string missing = (dir / "missing.txt").string();
+  r = runEval(dir, "--gt '" + missing + "' --est '" + gtPath() + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(missing), std::string::npos) << r.err;
+
+  const std::string far = (dir / "far.txt").string();
+  test::writeText(far, "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n");
+  r = runEval(dir, "--gt '" + gtPath() + "' --est '" + far + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(far), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no estimated stamp"), std::string::npos) << r.err;
+}
+
+}  // namespace bmp::eval
