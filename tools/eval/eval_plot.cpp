@@ -16,7 +16,7 @@ namespace {
 // BGR colours.
 const cv::Scalar kGtColor(50, 50, 50);
 const cv::Scalar kEstColor(190, 110, 20);
-const cv::Scalar kLinkColor(110, 110, 235);
+const cv::Scalar kLinkColor(150, 150, 240);
 const cv::Scalar kAteColor(190, 110, 20);
 const cv::Scalar kRpeColor(40, 140, 40);
 const cv::Scalar kRmseColor(40, 40, 200);
@@ -83,7 +83,12 @@ void plotTrajectoryTopView(const std::string& path, const Trajectory& gt, const 
   panel.legend({{"ground truth", kGtColor, 2},
                 {"estimate (aligned)", kEstColor, 1},
                 {"associated pairs", kLinkColor, 1},
-                {"start (filled) / end (ring)", kGtColor, 0}});
+                {"start (filled) / end (ring)", kGtColor, 0}},
+               [&] {
+                 std::vector<cv::Point2d> all = gt_xy;
+                 all.insert(all.end(), est_xy.begin(), est_xy.end());
+                 return all;
+               }());
   putTextCentered(image, title, {image.cols / 2, 24}, 0.65, 1);
   putTextCentered(image,
                   "top view (x-y of the ground-truth frame)   ATE rmse " +

@@ -26,21 +26,24 @@ bmp::ArgParser makeParser() {
   args.addOption("gt", "FILE", "ground-truth trajectory (required)");
   args.addOption("est", "FILE", "estimated trajectory (required)");
   args.addOption("max-diff", "SECONDS", "largest stamp difference for an ATE association", "0.02");
-  args.addOption("offset", "SECONDS", "time offset added to the estimated stamps", "0");
-  args.addOption("scale", "FACTOR", "scale applied to the estimated positions", "1");
+  args.addOption("offset", "SECONDS", "time offset added to the estimated stamps (ATE and RPE)", "0");
+  args.addOption("scale", "FACTOR", "scale applied to the estimated translations (ATE and RPE)", "1");
   args.addOption("rpe-delta", "DELTA", "RPE pose-pair distance, in --rpe-unit", "1.0");
   args.addOption("rpe-unit", "s|f", "unit of --rpe-delta: s (seconds) or f (frames)", "s");
   args.addOption("json", "FILE", "also write the results as JSON");
   args.addOption("plot-dir", "DIR",
                  "write PNG plots there (created if needed): <label>_trajectory.png, <label>_errors.png");
   args.addOption("aligned", "FILE", "write the whole estimate aligned to the ground truth (TUM format)");
-  args.addOption("label", "NAME", "name of the run, used in titles and plot file names", "");
+  args.addOption("label", "NAME",
+                 "name of the run, used in titles and plot file names (default: the --est file name "
+                 "without extension)");
   args.addEpilog(
       "\nExample:\n"
       "  bmp-eval --gt ../shared/data/rgbd_bonn_crowd/groundtruth.txt --est out/crowd.txt \\\n"
       "           --label crowd --json out/crowd_eval.json --plot-dir out/plots\n"
       "\nNotes:\n"
       "  RPE keeps every pose pair (the script samples 10000 at random when there are more).\n"
+      "  RPE pair error, as in the script: inv(inv(E_j) E_i) * inv(G_j) G_i (E estimate, G ground truth).\n"
       "  Exit status: 0 success, 1 bad command line, 2 bad input (unreadable or malformed file, no "
       "overlap).\n");
   return args;

@@ -113,13 +113,32 @@ void PlotPanel::referenceLine(double y, const cv::Scalar& color, const std::stri
   cv::putText(image_, label, org, kFont, 0.45, color, 1, cv::LINE_AA);
 }
 
-void PlotPanel::legend(const std::vector<LegendEntry>& entries) const {
+void PlotPanel::legend(const std::vector<LegendEntry>& entries, const std::vector<cv::Point2d>& avoid) const {
   int width = 0;
   int baseline = 0;
   for (const auto& e : entries)
     width = std::max(width, cv::getTextSize(e.label, kFont, 0.5, 1, &baseline).width);
   const int row = 24;
-  const cv::Rect box(area_.x + 12, area_.y + 12, width + 60, row * static_cast<int>(entries.size()) + 10);
+  const cv::Size size(width + 60, row * static_cast<int>(entries.size()) + 10);
+  const int left = area_.x + 12;
+  const int right = area_.x + area_.width - 12 - size.width;
+  const int top = area_.y + 12;
+  const int bottom = area_.y + area_.height - 12 - size.height;
+  cv::Rect box(cv::Point(left, top), size);
+  int fewest = -1;
+  for (const cv::Point corner :
+       {cv::Point(left, top), cv::Point(right, top), cv::Point(left, bottom), cv::Point(right, bottom)}) {
+    const cv::Rect candidate(corner, size);
+    int hidden = 0;
+    for (const auto& p : avoid) {
+      const cv::Point2d px = toPixel(p.x, p.y);
+      if (candidate.contains(cv::Point(static_cast<int>(px.x), static_cast<int>(px.y)))) ++hidden;
+    }
+    if (fewest < 0 || hidden < fewest) {
+      fewest = hidden;
+      box = candidate;
+    }
+  }
   cv::rectangle(image_, box, cv::Scalar(255, 255, 255), cv::FILLED);
   cv::rectangle(image_, box, cv::Scalar(170, 170, 170), 1);
   for (std::size_t k = 0; k < entries.size(); ++k) {

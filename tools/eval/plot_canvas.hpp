@@ -37,7 +37,8 @@ class PlotPanel {
   void marker(const cv::Point2d& p, const cv::Scalar& color, int radius, bool filled) const;
   // A dashed horizontal line across the panel with a label at its right end.
   void referenceLine(double y, const cv::Scalar& color, const std::string& label) const;
-  void legend(const std::vector<LegendEntry>& entries) const;
+  // Drawn in the inner corner holding the fewest of avoid (data points), so it hides as little as possible.
+  void legend(const std::vector<LegendEntry>& entries, const std::vector<cv::Point2d>& avoid = {}) const;
 
  private:
   cv::Mat& image_;
