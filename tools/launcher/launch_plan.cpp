@@ -6,12 +6,14 @@
 namespace bmp::launcher {
 
 namespace {
-std::string expand(std::string text, const RunRequest& request) {
+std::string expand(std::string text, const RunRequest& request, const std::string& mode) {
   const auto replace = [&text](const std::string& key, const std::string& value) {
     for (std::size_t pos; (pos = text.find(key)) != std::string::npos;) text.replace(pos, key.size(), value);
   };
   replace("{out}", request.out_dir);
   replace("{dataset}", request.dataset);
+  // Consumers must see every frame when capture waits for them, and only the newest when it does not.
+  replace("{frame_policy}", mode == "lockstep" ? "every" : "latest");
   return text;
 }
 }  // namespace
@@ -34,10 +36,11 @@ LaunchPlan makePlan(const RunSettings& settings, const RunRequest& request) {
   namespace fs = std::filesystem;
   LaunchPlan plan;
   const auto exe = [&](const std::string& name) { return (fs::path(request.bin_dir) / name).string(); };
+  const std::string mode = request.mode.empty() ? settings.mode : request.mode;
   std::string names;
   for (const auto& p : settings.processes) {
     ProcessCommand cmd{p.name, {exe(p.name), "--lcm-url", request.lcm_url}};
-    for (const auto& a : p.argv) cmd.argv.push_back(expand(a, request));
+    for (const auto& a : p.argv) cmd.argv.push_back(expand(a, request, mode));
     plan.processes.push_back(cmd);
     names += (names.empty() ? "" : ",") + p.name;
   }
@@ -45,19 +48,14 @@ LaunchPlan makePlan(const RunSettings& settings, const RunRequest& request) {
   plan.trajectory_path = (fs::path(request.out_dir) / "trajectory.txt").string();
   ProcessCommand& cap = plan.capture;
   cap.name = "bmp-capture";
-  cap.argv = {exe("bmp-capture"),
-              "--lcm-url",
-              request.lcm_url,
-              "--mode",
-              request.mode.empty() ? settings.mode : request.mode,
-              "--groundtruth-out",
-              plan.groundtruth_path};
+  cap.argv = {exe("bmp-capture"),  "--lcm-url",          request.lcm_url, "--mode", mode,
+              "--groundtruth-out", plan.groundtruth_path};
   if (!request.dataset.empty()) cap.argv.insert(cap.argv.end(), {"--dataset", request.dataset});
   if (!request.camera.empty()) cap.argv.insert(cap.argv.end(), {"--camera", request.camera});
   if (!request.speed.empty()) cap.argv.insert(cap.argv.end(), {"--speed", request.speed});
   if (request.frames >= 0) cap.argv.insert(cap.argv.end(), {"--end", std::to_string(request.frames)});
   if (!names.empty()) cap.argv.insert(cap.argv.end(), {"--wait-for", names});
-  for (const auto& a : settings.capture_args) cap.argv.push_back(expand(a, request));
+  for (const auto& a : settings.capture_args) cap.argv.push_back(expand(a, request, mode));
   return plan;
 }
 

@@ -34,7 +34,8 @@ struct RunSettings {
   std::vector<std::string> capture_args;
 };
 
-// Reads the "run" section. Placeholders {out} and {dataset} in arguments are expanded by makePlan.
+// Reads the "run" section. Placeholders in arguments, expanded by makePlan: {out} the run folder, {dataset}
+// the dataset folder, {frame_policy} "every" in lockstep mode and "latest" otherwise.
 RunSettings runSettingsFromConfig(const Config& run_section);
 
 struct LaunchPlan {
