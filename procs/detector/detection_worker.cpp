@@ -20,7 +20,8 @@ FrameResult processFrame(Detector& detector, const FrameJob& job) {
     result.error = "colour image is not 3-channel 8-bit";
     return result;
   }
-  result.detections = detector.detect(bgr);
+  result.stages.decode_ms = watch.elapsedMs();
+  result.detections = detector.detect(bgr, &result.stages);
   result.width = bgr.cols;
   result.height = bgr.rows;
   result.total_ms = watch.elapsedMs();

@@ -30,6 +30,7 @@ struct FrameResult {
   int width = 0;
   int height = 0;
   double total_ms = 0.0;  // decode + letterbox + inference + NMS
+  StageTimes stages;
 };
 
 // Decodes and detects one frame; an undecodable image gives !ok with the reason.

@@ -2,6 +2,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "bmp/common/timing.hpp"
 #include "detector/letterbox.hpp"
 
 namespace bmp::detector {
@@ -19,9 +20,14 @@ Detector::Detector(const DetectorConfig& config, const Config& dynamic_classes)
       model_(withThreads(config)),
       levels_(DynamicClassTable::fromConfig(dynamic_classes, model_.classNames())) {}
 
-std::vector<Detection> Detector::detect(const cv::Mat& bgr) {
+std::vector<Detection> Detector::detect(const cv::Mat& bgr, StageTimes* times) {
+  Stopwatch watch;
   const LetterboxTransform transform = letterbox(bgr, model_.inputSize(), square_);
+  const double letterbox_ms = watch.elapsedMs();
+  watch.restart();
   const cv::Mat rows = model_.infer(square_);
+  const double inference_ms = watch.elapsedMs();
+  watch.restart();
   const auto kept =
       nmsPerClass(model_.decode(rows, config_.conf_threshold), config_.nms_threshold, config_.max_detections);
   const cv::Rect2f image_rect(0, 0, static_cast<float>(bgr.cols), static_cast<float>(bgr.rows));
@@ -32,6 +38,11 @@ std::vector<Detection> Detector::detect(const cv::Mat& bgr) {
     if (box.area() <= 0.0f) continue;
     const std::string& label = model_.classNames()[c.class_id];
     detections.push_back({box, c.class_id, label, c.score, levels_.levelOf(label)});
+  }
+  if (times != nullptr) {
+    times->letterbox_ms = letterbox_ms;
+    times->inference_ms = inference_ms;
+    times->nms_ms = watch.elapsedMs();
   }
   return detections;
 }

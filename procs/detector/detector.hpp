@@ -19,6 +19,14 @@ struct Detection {
   DynamicLevel level = DynamicLevel::kLow;
 };
 
+// Where the time of one detect() call went, milliseconds.
+struct StageTimes {
+  double decode_ms = 0.0;  // filled by processFrame
+  double letterbox_ms = 0.0;
+  double inference_ms = 0.0;
+  double nms_ms = 0.0;  // decode of the output rows + NMS + mapping back
+};
+
 class Detector {
  public:
   // Loads and checks the model (ModelError) and maps its classes to levels (ConfigError, see
@@ -26,7 +34,7 @@ class Detector {
   Detector(const DetectorConfig& config, const Config& dynamic_classes);
 
   // Letterbox, inference, decode, per-class NMS, back to image pixels. bgr: CV_8UC3, any size.
-  std::vector<Detection> detect(const cv::Mat& bgr);
+  std::vector<Detection> detect(const cv::Mat& bgr, StageTimes* times = nullptr);
 
   std::string modelName() const { return model_.name(); }
   const std::vector<std::string>& classNames() const { return model_.classNames(); }

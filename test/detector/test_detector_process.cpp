@@ -213,5 +213,22 @@ TEST_F(DetectorProcess, LatestModeWorksOnTheNewestFrameAndCountsDrops) {
   EXPECT_EQ(last.malformed, 0);
 }
 
+TEST(DetectorProcessStartUp, MissingModelIsAConfigurationErrorBeforeAnyFrame) {
+  const auto dir = test::scratchDir("detector_process_missing_model");
+  const std::string config = (dir / "detector.yaml").string();
+  std::ofstream(config) << "model:\n  path: " << (dir / "absent.onnx").string()
+                        << "\ndynamic_classes: " << test::sourceDir() << "/config/dynamic_classes.yaml\n";
+  const std::string log_path = (dir / "bmp-detector.log").string();
+  ChildProcess child({test::binPath("bmp-detector"), "--config", config, "--lcm-url",
+                      "udpm://239.255.76.67:" + std::to_string(37000 + getpid() % 20000) + "?ttl=0"},
+                     ChildProcess::Output::kFile, log_path);
+  EXPECT_EQ(child.wait(30.0), 2);
+  std::ifstream in(log_path);
+  std::stringstream log;
+  log << in.rdbuf();
+  EXPECT_NE(log.str().find((dir / "absent.onnx").string() + ": ONNX model file not found"), std::string::npos)
+      << log.str();
+}
+
 }  // namespace
 }  // namespace bmp

@@ -63,15 +63,21 @@ int run(const bmp::ArgParser& args) {
   for (const auto& preset : splitCommas(args.value("models"))) {
     Detector detector(withModelPreset(base, preset), dynamic);
     for (long long i = 0; i < warmup; ++i) processFrame(detector, frames[i % frames.size()]);
-    bmp::TimingStats stats;
+    bmp::TimingStats stats, decode, letterbox, inference, nms;
     for (const auto& job : frames) {
       const FrameResult result = processFrame(detector, job);
       if (!result.ok) throw std::runtime_error("frame " + std::to_string(job.seq) + ": " + result.error);
       stats.add(result.total_ms);
+      decode.add(result.stages.decode_ms);
+      letterbox.add(result.stages.letterbox_ms);
+      inference.add(result.stages.inference_ms);
+      nms.add(result.stages.nms_ms);
     }
     std::printf("%-26s %6d %5zu %10.1f %10.1f %10.1f %14.2f\n", detector.modelName().c_str(),
                 detector.config().input_size, stats.count(), stats.median(), stats.p95(), stats.mean(),
                 stats.median() / kTargetMs);
+    std::printf("  stage medians: decode %.1f, letterbox %.1f, inference %.1f, nms %.1f ms\n",
+                decode.median(), letterbox.median(), inference.median(), nms.median());
   }
   return 0;
 }
