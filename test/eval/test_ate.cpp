@@ -101,6 +101,18 @@ TEST(evalAte, AlignedTrajectoryLandsOnGroundTruth) {
   }
 }
 
+TEST(evalAte, FewerThanTwoPairsIsAnError) {
+  const Trajectory gt = curve(10);
+  const Trajectory one = {gt[3]};
+  try {
+    computeAte(gt, one);
+    FAIL() << "expected EvalError";
+  } catch (const EvalError& e) {
+    EXPECT_NE(std::string(e.what()).find("only one estimated stamp"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(computeAte(gt, {gt[3], gt[4]}).stats.count, 2u);
+}
+
 TEST(evalAte, NoOverlapNamesTheSpans) {
   const Trajectory gt = curve(10);
   Trajectory est = gt;

@@ -38,7 +38,7 @@ int lineCount(const std::string& text) {
 TEST(evalCli, SelfComparisonWritesAllOutputs) {
   const auto dir = bmp::test::scratchDir("eval_cli_ok");
   const CliRun r =
-      runEval(dir, "--gt '" + gtPath() + "' --est '" + gtPath() + "' --label self --json '" +
+      runEval(dir, "--gt '" + gtPath() + "' --est '" + gtPath() + "' --label 'self run/1' --json '" +
                        (dir / "r.json").string() + "' --aligned '" + (dir / "aligned.txt").string() +
                        "' --plot-dir '" + (dir / "plots").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -46,10 +46,12 @@ TEST(evalCli, SelfComparisonWritesAllOutputs) {
   EXPECT_NE(r.out.find("RPE"), std::string::npos);
   EXPECT_NE(r.out.find("rmse        0.000000 m"), std::string::npos) << r.out;
   const std::string json = test::readText((dir / "r.json").string());
-  EXPECT_NE(json.find("\"label\": \"self\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"label\": \"self run/1\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"rotation_deg\""), std::string::npos) << json;
-  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_trajectory.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_errors.png"));
+  // The label keeps its slash in titles; plot file names get a file-safe version.
+  EXPECT_NE(r.out.find("bmp-eval: self run/1"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_run_1_trajectory.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_run_1_errors.png"));
   EXPECT_GT(std::filesystem::file_size(dir / "aligned.txt"), 10'000u);
 }
 

@@ -24,8 +24,12 @@ def read_poses(path):
 
 
 def associate(first, second, offset, max_difference):
-    candidates = [(abs(a - (b + offset)), a, b) for a in first for b in second
-                  if abs(a - (b + offset)) < max_difference]
+    # All pairs closer than max_difference (numpy only to keep the all-pairs scan fast; same float ops).
+    second_array = np.array(second, dtype=np.float64)
+    candidates = []
+    for a in first:
+        diff = np.abs(a - (second_array + offset))
+        candidates += [(float(diff[k]), a, second[k]) for k in np.nonzero(diff < max_difference)[0]]
     candidates.sort()
     used_a, used_b, matches = set(), set(), []
     for _, a, b in candidates:

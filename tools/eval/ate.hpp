@@ -30,7 +30,8 @@ struct AteResult {
   ErrorStats stats;            // metres
 };
 
-// gt and est sorted with unique stamps (see loadTrajectory). Throws EvalError when no stamps associate.
+// gt and est sorted with unique stamps (see loadTrajectory). Throws EvalError when fewer than two stamps
+// associate.
 AteResult computeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options = {});
 
 // The whole estimate moved into the ground-truth frame: positions scaled, then aligned; orientations

@@ -1,6 +1,7 @@
 // bmp-eval: ATE and RPE of an estimated trajectory against ground truth, with the numbers of the TUM RGB-D
 // benchmark's evaluate_ate.py and evaluate_rpe.py --fixed_delta, plus optional JSON, plots and the aligned
 // estimate.
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -54,12 +55,23 @@ std::string defaultLabel(const std::string& est_path) {
   return stem.empty() ? "estimate" : stem;
 }
 
+// A label may hold spaces or slashes; plot file names get a tame version of it.
+std::string fileSafe(const std::string& label) {
+  std::string out = label;
+  for (char& c : out) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+    if (!keep) c = '_';
+  }
+  return out;
+}
+
 int run(const bmp::ArgParser& args) {
   namespace ev = bmp::eval;
   ev::EvalReport report;
   report.gt_path = args.value("gt");
   report.est_path = args.value("est");
   report.label = args.given("label") ? args.value("label") : defaultLabel(report.est_path);
+  if (report.label.empty()) report.label = "estimate";
   report.ate_options.max_difference = args.number("max-diff");
   report.ate_options.offset = args.number("offset");
   report.ate_options.scale = args.number("scale");
@@ -96,8 +108,9 @@ int run(const bmp::ArgParser& args) {
     if (ec) throw ev::EvalError(dir.string() + ": cannot create plot directory: " + ec.message());
     std::ostringstream caption;
     caption << "delta " << report.rpe_options.delta << " " << ev::deltaUnitName(report.rpe_options.unit);
-    const std::string trajectory_png = (dir / (report.label + "_trajectory.png")).string();
-    const std::string errors_png = (dir / (report.label + "_errors.png")).string();
+    const std::string stem = fileSafe(report.label);
+    const std::string trajectory_png = (dir / (stem + "_trajectory.png")).string();
+    const std::string errors_png = (dir / (stem + "_errors.png")).string();
     ev::plotTrajectoryTopView(trajectory_png, gt, aligned, report.ate, report.label);
     ev::plotErrorsOverTime(errors_png, report.ate, report.rpe, gt.front().stamp, caption.str(), report.label);
     std::cout << "plots: " << trajectory_png << ", " << errors_png << "\n";
