@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "capture/synthetic_geometry.hpp"
+#include "capture/synthetic_sampler.hpp"
 #include "capture/synthetic_scene.hpp"
 #include "capture/synthetic_texture.hpp"
 

@@ -11,17 +11,19 @@
 namespace bmp::capture {
 namespace {
 
-// A box to test rays against, in its own frame: a ray of camera direction dc is o + t * M * dc there,
-// and t is then the z-depth of the hit in the camera frame.
+// A box to test rays against, in its own frame: a ray of camera direction dc is o + t * M * dc there, and t
+// is then the z-depth of the hit in the camera frame. The per-pixel part works in float on corners
+// relative to o; float keeps depth and texture coordinates well below a micrometre of error here.
 struct Candidate {
   AlignedBox box;
-  Eigen::Matrix3d M;
-  Eigen::Vector3d o;
-  int texture = 0;  // first of its 6 textures
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d o = Eigen::Vector3d::Zero();
+  bool own_frame = false;  // false: the world frame, so the pixel's world ray is reused
+  int texture = 0;         // first of its 6 textures
   bool dynamic = false;
-  int u0 = 0, u1 = -1, v0 = 0, v1 = -1;  // inclusive pixel bounds of its projection
-  // M * (0, yn, 1) for the current row, and M's first column.
-  Eigen::Vector3d row_dir = Eigen::Vector3d::Zero(), col_dir = Eigen::Vector3d::Zero();
+  int u0 = 0, u1 = -1, v0 = 0, v1 = -1;                  // inclusive pixel bounds of its projection
+  float lo_o[3] = {0, 0, 0}, hi_o[3] = {0, 0, 0};        // box corners minus o
+  float row_dir[3] = {0, 0, 0}, col_dir[3] = {0, 0, 0};  // M * (0, yn, 1) for this row; M's first column
 };
 
 // Screen bounds of the box's projection; false when it lies entirely behind the camera.
@@ -49,40 +51,22 @@ bool screenBounds(Candidate& c, const CameraIntrinsics& k) {
   return c.u0 <= c.u1 && c.v0 <= c.v1;
 }
 
-// Slab test for a ray starting outside the box; the entry distance and face when it hits ahead.
-inline bool enterBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const AlignedBox& b, double& t,
+// Slab test with precomputed reciprocal directions for a ray starting outside the box: the entry distance
+// and face when it enters ahead of t_max.
+inline bool enterBox(const float lo_o[3], const float hi_o[3], const float inv[3], float t_max, float& t,
                      int& face) {
-  double t_near = -std::numeric_limits<double>::infinity();
-  double t_far = std::numeric_limits<double>::infinity();
-  int axis = 0;
+  float t_near = 0.0f, t_far = t_max;
+  int axis = -1;
   for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0) {
-      if (o[a] < b.lo[a] || o[a] > b.hi[a]) return false;
-      continue;
-    }
-    const double inv = 1.0 / d[a];
-    double t0 = (b.lo[a] - o[a]) * inv, t1 = (b.hi[a] - o[a]) * inv;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_near) t_near = t0, axis = a;
-    t_far = std::min(t_far, t1);
+    const float t0 = lo_o[a] * inv[a], t1 = hi_o[a] * inv[a];
+    const float near = std::min(t0, t1), far = std::max(t0, t1);
+    if (near > t_near) t_near = near, axis = a;
+    t_far = std::min(t_far, far);
   }
-  if (t_near > t_far || t_near <= 0.0) return false;
+  if (axis < 0 || t_near > t_far) return false;
   t = t_near;
-  face = 2 * axis + (d[axis] < 0 ? 1 : 0);
+  face = 2 * axis + (inv[axis] < 0 ? 1 : 0);
   return true;
-}
-
-// Where a ray from inside the box leaves it.
-inline void exitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const AlignedBox& b, double& t,
-                    int& face) {
-  t = std::numeric_limits<double>::infinity();
-  face = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0) continue;
-    const bool up = d[a] > 0;
-    const double ta = ((up ? b.hi[a] : b.lo[a]) - o[a]) / d[a];
-    if (ta < t) t = ta, face = 2 * a + (up ? 1 : 0);
-  }
 }
 
 }  // namespace
@@ -102,15 +86,21 @@ SyntheticFrame SyntheticScene::render(int index) const {
 
   const Eigen::Matrix3d R = frame.T_world_cam.linear();
   const Eigen::Vector3d origin = frame.T_world_cam.translation();
+  const auto toFloat = [](const Eigen::Vector3d& v, float out[3]) {
+    for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
+  };
   std::vector<Candidate> candidates;
   const auto add = [&](const AlignedBox& box, const SE3& T_world_box, int texture, bool dynamic) {
     Candidate c;
     c.box = box;
     c.M = T_world_box.linear().transpose() * R;
     c.o = T_world_box.inverse() * origin;
+    c.own_frame = dynamic;
     c.texture = texture;
     c.dynamic = dynamic;
-    c.col_dir = c.M.col(0);
+    toFloat(box.lo - c.o, c.lo_o);
+    toFloat(box.hi - c.o, c.hi_o);
+    toFloat(c.M.col(0), c.col_dir);
     if (screenBounds(c, k)) candidates.push_back(c);
   };
   for (std::size_t i = 0; i < static_boxes_.size(); ++i)
@@ -118,6 +108,10 @@ SyntheticFrame SyntheticScene::render(int index) const {
   const auto objects = movingObjects(index);
   for (std::size_t i = 0; i < objects.size(); ++i)
     add(objects[i].box, objects[i].T_world_object, 6 * static_cast<int>(1 + static_boxes_.size() + i), true);
+  float room_lo_o[3], room_hi_o[3], r_col0[3];
+  toFloat(room_.lo - origin, room_lo_o);
+  toFloat(room_.hi - origin, room_hi_o);
+  toFloat(R.col(0), r_col0);
 
   // Noise offsets for this frame: colour channels and depth each read the tile at their own offset.
   synth::SplitMix64 rng(synth::mixSeed(static_cast<uint64_t>(config_.seed), 4, static_cast<uint64_t>(index)));
@@ -125,16 +119,21 @@ SyntheticFrame SyntheticScene::render(int index) const {
   for (int& o : off) o = rng.integer(0, Internals::kNoiseMargin - 1);
   const bool color_noise = config_.color_noise > 0, depth_noise = config_.depth_noise > 0;
   const float color_sigma = static_cast<float>(config_.color_noise);
+  const float depth_sigma = static_cast<float>(config_.depth_noise);
+  const float max_depth = static_cast<float>(config_.max_depth);
+  const float depth_scale = static_cast<float>(k.depth_scale);
+  const float focal = static_cast<float>(std::sqrt(k.fx * k.fy));
 
-  const double focal = std::sqrt(k.fx * k.fy);
   std::vector<Candidate*> active;
+  std::vector<synth::TexelLookup> lookups(k.width);
   for (int v = 0; v < k.height; ++v) {
     const double yn = (v - k.cy) / k.fy;
-    const Eigen::Vector3d row_dir = R.col(1) * yn + R.col(2);
+    float row_dir[3];
+    toFloat(R.col(1) * yn + R.col(2), row_dir);
     active.clear();
     for (auto& c : candidates) {
       if (v < c.v0 || v > c.v1) continue;
-      c.row_dir = c.M.col(1) * yn + c.M.col(2);
+      toFloat(c.M.col(1) * yn + c.M.col(2), c.row_dir);
       active.push_back(&c);
     }
     auto* bgr = frame.bgr.ptr<uint8_t>(v);
@@ -142,39 +141,52 @@ SyntheticFrame SyntheticScene::render(int index) const {
     auto* mask = frame.mask.ptr<uint8_t>(v);
     const float* noise_row = color_noise || depth_noise ? in_->noise.ptr<float>(v + off[0]) : nullptr;
     for (int u = 0; u < k.width; ++u) {
-      const double xn = (u - k.cx) / k.fx;
-      const Eigen::Vector3d d = row_dir + xn * R.col(0);
-      double t = 0.0;
+      const float xn = static_cast<float>((u - k.cx) / k.fx);
+      float d[3], inv[3];
+      for (int i = 0; i < 3; ++i) d[i] = row_dir[i] + xn * r_col0[i], inv[i] = 1.0f / d[i];
+      // The room, from inside: the nearest wall plane ahead.
+      float t = std::numeric_limits<float>::infinity();
       int face = 0;
-      exitBox(origin, d, room_, t, face);
+      for (int a = 0; a < 3; ++a) {
+        const bool up = d[a] > 0;
+        const float ta = (up ? room_hi_o[a] : room_lo_o[a]) * inv[a];
+        if (ta < t) t = ta, face = 2 * a + (up ? 1 : 0);
+      }
       const Candidate* hit = nullptr;
-      Eigen::Vector3d hit_dir = d;
+      float hit_dir[3] = {d[0], d[1], d[2]};
       for (const Candidate* c : active) {
         if (u < c->u0 || u > c->u1) continue;
-        const Eigen::Vector3d dl = c->row_dir + xn * c->col_dir;
-        double tc = 0.0;
+        float dl[3] = {d[0], d[1], d[2]}, invl[3] = {inv[0], inv[1], inv[2]};
+        if (c->own_frame)
+          for (int i = 0; i < 3; ++i) dl[i] = c->row_dir[i] + xn * c->col_dir[i], invl[i] = 1.0f / dl[i];
+        float tc = 0.0f;
         int fc = 0;
-        if (enterBox(c->o, dl, c->box, tc, fc) && tc < t) t = tc, face = fc, hit = c, hit_dir = dl;
+        if (enterBox(c->lo_o, c->hi_o, invl, t, tc, fc)) {
+          t = tc, face = fc, hit = c;
+          for (int i = 0; i < 3; ++i) hit_dir[i] = dl[i];
+        }
       }
-      const AlignedBox& box = hit ? hit->box : room_;
-      const Eigen::Vector3d p = (hit ? hit->o : origin) + t * hit_dir;
+      const float* lo_o = hit ? hit->lo_o : room_lo_o;
       int a = 0, b = 0;
       synth::faceAxes(face, a, b);
       // Footprint of the pixel on the surface: t / (f * sqrt(|d . n|)) for the unnormalised direction d.
-      const double footprint = t / (focal * std::sqrt(std::max(std::abs(hit_dir[face / 2]), 1e-4)));
+      const float footprint = t / (focal * std::sqrt(std::max(std::abs(hit_dir[face / 2]), 1e-4f)));
+      lookups[u] = in_->textures[(hit ? hit->texture : 0) + face].locate(t * hit_dir[a] - lo_o[a],
+                                                                         t * hit_dir[b] - lo_o[b], footprint);
+      synth::prefetch(lookups[u]);
+      float z = t;
+      if (depth_noise) z += depth_sigma * z * z * noise_row[3 * u + off[4]];
+      depth[u] = z > 0 && z <= max_depth ? cv::saturate_cast<uint16_t>(z * depth_scale) : 0;
+      if (hit && hit->dynamic) mask[u] = 255;
+    }
+    // Second pass: colour, once the row's texels are on their way into the cache.
+    for (int u = 0; u < k.width; ++u) {
       float colour[3];
-      in_->textures[(hit ? hit->texture : 0) + face].sample(p[a] - box.lo[a], p[b] - box.lo[b], footprint,
-                                                            colour);
+      synth::sample(lookups[u], colour);
       for (int ch = 0; ch < 3; ++ch) {
         const float n = color_noise ? color_sigma * noise_row[3 * u + ch + off[1 + ch]] : 0.0f;
         bgr[3 * u + ch] = cv::saturate_cast<uint8_t>(colour[ch] + n);
       }
-      double z = t;
-      if (depth_noise) z += config_.depth_noise * z * z * noise_row[3 * u + off[4]];
-      depth[u] = z > 0 && z <= config_.max_depth
-                     ? static_cast<uint16_t>(std::min(65535.0, std::round(z * k.depth_scale)))
-                     : 0;
-      if (hit && hit->dynamic) mask[u] = 255;
     }
   }
   return frame;

@@ -16,7 +16,7 @@ namespace {
 
 // Baked-in shading per face (x-, x+, y-, y+, floor/bottom, ceiling/top): fixed, so colour is view
 // independent and photometric tracking holds exactly.
-constexpr double kFaceShade[6] = {0.92, 0.84, 0.88, 1.0, 0.8, 0.72};
+constexpr double kFaceShade[6] = {0.95, 0.9, 0.93, 1.0, 0.88, 0.85};
 
 void addBoxTextures(const AlignedBox& box, const SyntheticSceneConfig& c, uint64_t seed,
                     std::vector<SurfaceTexture>& out) {

@@ -26,7 +26,7 @@ struct SyntheticSceneConfig {
   std::array<double, 3> room_size{6.0, 5.0, 3.0};  // x, y, height (m)
   int num_static_boxes = 5;                        // furniture pieces along the walls, 0..5
   double texels_per_metre = 200.0;                 // texture resolution
-  double shapes_per_square_metre = 70.0;           // density of drawn texture shapes
+  double shapes_per_square_metre = 110.0;          // density of drawn texture shapes
 
   // Camera path: centre plus a sinusoid per axis; orientation looks along +y, then yaw, pitch, roll.
   std::array<double, 3> camera_centre{0.0, -1.6, 1.4};

@@ -1,6 +1,9 @@
 #include "capture/synthetic_texture.hpp"
 
+#include "capture/synthetic_sampler.hpp"
+
 #include <algorithm>
+#include <cstring>
 
 #include <opencv2/imgproc.hpp>
 
@@ -36,15 +39,18 @@ cv::Scalar hsvToBgr(double h, double s, double v) {
 }
 
 // Dark or bright, so that neighbouring shapes usually differ strongly in intensity (FAST looks at grey).
-cv::Scalar contrastColour(SplitMix64& rng) {
+// Most shapes take the surface's own hue, so that walls, floor and furniture look distinct.
+cv::Scalar contrastColour(SplitMix64& rng, double palette_hue) {
   const bool dark = rng.uniform() < 0.5;
   const double v = dark ? rng.uniform(0.05, 0.35) : rng.uniform(0.65, 1.0);
-  return hsvToBgr(rng.uniform(0, 6), rng.uniform(0.1, 0.9), v);
+  const double hue =
+      rng.uniform() < 0.7 ? std::fmod(palette_hue + rng.uniform(0, 1.2) + 6.0, 6.0) : rng.uniform(0, 6);
+  return hsvToBgr(hue, rng.uniform(0.1, 0.8), v);
 }
 
-void drawShape(cv::Mat& img, SplitMix64& rng, double size) {
+void drawShape(cv::Mat& img, SplitMix64& rng, double size, double palette_hue) {
   const cv::Point2d c(rng.uniform(0, img.cols), rng.uniform(0, img.rows));
-  const cv::Scalar colour = contrastColour(rng);
+  const cv::Scalar colour = contrastColour(rng, palette_hue);
   const double angle = rng.uniform(0, kPi);
   const double aspect = rng.uniform(0.3, 1.0);
   const auto pt = [&](double x, double y) {
@@ -98,7 +104,8 @@ cv::Mat drawTexture(double width_m, double height_m, const TextureStyle& style, 
   const double tpm = style.texels_per_metre;
   const int cols = std::max(16, static_cast<int>(std::ceil(width_m * tpm)) + 2);
   const int rows = std::max(16, static_cast<int>(std::ceil(height_m * tpm)) + 2);
-  cv::Mat img(rows, cols, CV_8UC3, hsvToBgr(rng.uniform(0, 6), rng.uniform(0.1, 0.5), rng.uniform(0.4, 0.7)));
+  const double palette_hue = rng.uniform(0, 6);
+  cv::Mat img(rows, cols, CV_8UC3, hsvToBgr(palette_hue, rng.uniform(0.1, 0.5), rng.uniform(0.4, 0.7)));
 
   // Soft large-scale blotches, so that flat regions between shapes are not uniform.
   cv::Mat coarse(std::max(2, rows / 50), std::max(2, cols / 50), CV_8UC3);
@@ -110,12 +117,12 @@ cv::Mat drawTexture(double width_m, double height_m, const TextureStyle& style, 
   cv::resize(coarse, blotches, img.size(), 0, 0, cv::INTER_CUBIC);
   cv::addWeighted(img, 0.5, blotches, 0.5, 0.0, img);
 
-  // Shapes from 1.5 cm to 45 cm, log-uniform, large first so the fine detail stays on top.
+  // Shapes from 1.5 cm to 30 cm, log-uniform, large first so the fine detail stays on top.
   const int count = static_cast<int>(style.shapes_per_square_metre * width_m * height_m) + 4;
   std::vector<double> sizes(count);
-  for (double& s : sizes) s = std::exp(rng.uniform(std::log(0.015), std::log(0.45))) * tpm;
+  for (double& s : sizes) s = std::exp(rng.uniform(std::log(0.015), std::log(0.30))) * tpm;
   std::sort(sizes.begin(), sizes.end(), std::greater<>());
-  for (double s : sizes) drawShape(img, rng, s);
+  for (double s : sizes) drawShape(img, rng, s, palette_hue);
 
   // Fine grain, then a light blur so that level 0 is band-limited.
   cv::Mat grain(rows, cols, CV_8UC3);
@@ -131,51 +138,24 @@ cv::Mat drawTexture(double width_m, double height_m, const TextureStyle& style, 
 }
 
 SurfaceTexture::SurfaceTexture(const cv::Mat& level0, double texels_per_metre)
-    : texels_per_metre_(texels_per_metre) {
-  levels_.push_back(level0);
-  while (levels_.size() < 8 && std::min(levels_.back().cols, levels_.back().rows) >= 16) {
+    : texels_per_metre_(static_cast<float>(texels_per_metre)) {
+  // Four channels so that a texel is one aligned 32-bit load and the channel loop vectorises.
+  cv::Mat image;
+  cv::cvtColor(level0, image, cv::COLOR_BGR2BGRA);
+  while (true) {
+    Level level;
+    level.image = image;
+    level.data = image.ptr<uint8_t>(0);
+    level.step = image.step[0];
+    level.max_x = static_cast<float>(image.cols) - 1.001f;
+    level.max_y = static_cast<float>(image.rows) - 1.001f;
+    level.scale = std::ldexp(1.0f, -static_cast<int>(levels_.size()));
+    levels_.push_back(level);
+    if (levels_.size() >= 8 || std::min(image.cols, image.rows) < 16) break;
     cv::Mat next;
-    cv::pyrDown(levels_.back(), next);
-    levels_.push_back(next);
+    cv::pyrDown(image, next);
+    image = next;
   }
-}
-
-namespace {
-
-// Bilinear sample at texel-centre coordinates (x, y), clamped to the image, accumulated with weight w.
-inline void bilinear(const cv::Mat& img, float x, float y, float w, float out[3]) {
-  x = std::min(std::max(x, 0.0f), static_cast<float>(img.cols) - 1.001f);
-  y = std::min(std::max(y, 0.0f), static_cast<float>(img.rows) - 1.001f);
-  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const float ax = x - static_cast<float>(x0), ay = y - static_cast<float>(y0);
-  const uint8_t* r0 = img.ptr<uint8_t>(y0) + 3 * x0;
-  const uint8_t* r1 = r0 + img.step[0];
-  for (int c = 0; c < 3; ++c) {
-    const float top = r0[c] + ax * (static_cast<float>(r0[c + 3]) - r0[c]);
-    const float bottom = r1[c] + ax * (static_cast<float>(r1[c + 3]) - r1[c]);
-    out[c] += w * (top + ay * (bottom - top));
-  }
-}
-
-}  // namespace
-
-void SurfaceTexture::sample(double u, double v, double footprint, float out[3]) const {
-  out[0] = out[1] = out[2] = 0.0f;
-  // pyrDown keeps texel 2i of a level as texel i of the next: coordinates halve about texel centre 0.
-  const float x0 = static_cast<float>(u * texels_per_metre_ - 0.5);
-  const float y0 = static_cast<float>(v * texels_per_metre_ - 0.5);
-  const double texels = footprint * texels_per_metre_;
-  if (texels <= 1.0) {
-    bilinear(levels_[0], x0, y0, 1.0f, out);
-    return;
-  }
-  const double lod = std::min(std::log2(texels), static_cast<double>(levels_.size() - 1));
-  const int l = std::min(static_cast<int>(lod), static_cast<int>(levels_.size()) - 1);
-  const float frac = static_cast<float>(lod - l);
-  const float s0 = std::ldexp(1.0f, -l);
-  bilinear(levels_[l], x0 * s0, y0 * s0, 1.0f - frac, out);
-  if (frac > 0.0f && l + 1 < static_cast<int>(levels_.size()))
-    bilinear(levels_[l + 1], x0 * s0 * 0.5f, y0 * s0 * 0.5f, frac, out);
 }
 
 cv::Mat unitNoiseTile(int rows, int cols, uint64_t seed) {

@@ -1,7 +1,7 @@
 #pragma once
 // Procedural textures for the synthetic scene: seeded random shapes at several scales drawn with OpenCV,
 // stored as a mip pyramid and sampled trilinearly in world units, so the rendered images carry dense,
-// non-repetitive corners without aliasing.
+// non-repetitive corners without aliasing (sampling: synthetic_sampler.hpp).
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -39,24 +39,12 @@ uint64_t mixSeed(uint64_t seed, uint64_t a, uint64_t b = 0);
 
 struct TextureStyle {
   double texels_per_metre = 200.0;
-  double shapes_per_square_metre = 70.0;
+  double shapes_per_square_metre = 110.0;
   double brightness = 1.0;  // baked-in shading of the face, view independent
 };
 
 // A BGR texture of the given size in metres (CV_8UC3), slightly blurred so level 0 does not alias.
 cv::Mat drawTexture(double width_m, double height_m, const TextureStyle& style, uint64_t seed);
-
-class SurfaceTexture {
- public:
-  SurfaceTexture() = default;
-  SurfaceTexture(const cv::Mat& level0, double texels_per_metre);
-  // Colour (B, G, R in 0..255) at (u, v) metres for a pixel covering `footprint` metres of the surface.
-  void sample(double u, double v, double footprint, float out[3]) const;
-
- private:
-  std::vector<cv::Mat> levels_;
-  double texels_per_metre_ = 1.0;
-};
 
 // Rows x cols of unit-variance normal samples (CV_32FC1).
 cv::Mat unitNoiseTile(int rows, int cols, uint64_t seed);
