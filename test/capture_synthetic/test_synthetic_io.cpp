@@ -1,6 +1,7 @@
 // The synthetic scene's configuration, its FrameSource and the TUM folder writer.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -75,6 +76,45 @@ TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
   EXPECT_THROW(SyntheticScene{tiny}, std::invalid_argument);
 }
 
+TEST(SyntheticOptions, NoiseAndRangeBehaveAsConfigured) {
+  SyntheticSceneConfig clean = shortSequence(1);
+  clean.color_noise = 0.0;
+  SyntheticSceneConfig noisy = clean;
+  noisy.color_noise = 3.0;
+  noisy.depth_noise = 0.004;
+  noisy.max_depth = 3.0;
+  const SyntheticFrame a = SyntheticScene(clean).render(0);
+  const SyntheticFrame b = SyntheticScene(noisy).render(0);
+  EXPECT_EQ(cv::norm(a.mask, b.mask, cv::NORM_INF), 0);  // same geometry and texture
+
+  cv::Mat colour_diff;
+  cv::subtract(b.bgr, a.bgr, colour_diff, cv::noArray(), CV_32F);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(colour_diff.reshape(1), mean, stddev);
+  EXPECT_NEAR(mean[0], 0.0, 0.2);
+  EXPECT_NEAR(stddev[0], 3.0, 0.4);
+
+  const double scale = clean.camera.depth_scale;
+  int cut = 0, kept = 0;
+  double sum_sq = 0;
+  for (int v = 0; v < a.depth.rows; ++v) {
+    for (int u = 0; u < a.depth.cols; ++u) {
+      const double za = a.depth.at<uint16_t>(v, u) / scale, zb = b.depth.at<uint16_t>(v, u) / scale;
+      ASSERT_GT(za, 0.0);  // the room is closed and within 8 m
+      if (zb == 0.0) {
+        ++cut;
+        continue;
+      }
+      EXPECT_LE(zb, 3.0);
+      sum_sq += std::pow((zb - za) / (0.004 * za * za), 2);
+      ++kept;
+    }
+  }
+  EXPECT_GT(cut, 1000);  // beyond max_depth
+  ASSERT_GT(kept, 1000);
+  EXPECT_NEAR(std::sqrt(sum_sq / kept), 1.0, 0.15);  // noise in units of its sigma
+}
+
 TEST(SyntheticSource, DeliversRawFramesWithGroundTruthAndMasks) {
   auto scene = std::make_shared<const SyntheticScene>(shortSequence(3));
   SyntheticSource source(scene);
@@ -99,7 +139,7 @@ TEST(SyntheticSource, DeliversRawFramesWithGroundTruthAndMasks) {
   EXPECT_EQ(source.skips().total(), 0);
 }
 
-TEST(TumFolderWriter, WritesAFolderThatReadsBack) {
+TEST(SyntheticTumFolder, WritesAFolderThatReadsBack) {
   const SyntheticScene scene(shortSequence(4));
   const std::string dir = test::scratchDir("synthetic_tum").string();
   int calls = 0;

@@ -16,19 +16,28 @@
 namespace bmp::capture {
 namespace {
 
-// Scenes are costly to build (textures), so the suite shares one dynamic and one static scene.
+// Scenes are costly to build (textures): the suite shares one dynamic and one static scene, each built
+// on first use (ctest runs every test in its own process).
 class SyntheticSceneTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dynamic_ = std::make_unique<SyntheticScene>(SyntheticSceneConfig{});
-    SyntheticSceneConfig still;
-    still.num_moving_objects = 0;
-    static_ = std::make_unique<SyntheticScene>(still);
-  }
   static void TearDownTestSuite() {
     dynamic_.reset();
     static_.reset();
   }
+  static const SyntheticScene& dynamicScene() {
+    if (!dynamic_) dynamic_ = std::make_unique<SyntheticScene>(SyntheticSceneConfig{});
+    return *dynamic_;
+  }
+  static const SyntheticScene& staticScene() {
+    if (!static_) {
+      SyntheticSceneConfig still;
+      still.num_moving_objects = 0;
+      static_ = std::make_unique<SyntheticScene>(still);
+    }
+    return *static_;
+  }
+
+ private:
   static std::unique_ptr<SyntheticScene> dynamic_;
   static std::unique_ptr<SyntheticScene> static_;
 };
@@ -48,21 +57,21 @@ double distanceToBoxSurface(const Eigen::Vector3d& p, const AlignedBox& b, doubl
 }
 
 TEST_F(SyntheticSceneTest, RendersTheConfiguredFormats) {
-  const SyntheticFrame f = dynamic_->render(0);
+  const SyntheticFrame f = dynamicScene().render(0);
   EXPECT_EQ(f.bgr.type(), CV_8UC3);
   EXPECT_EQ(f.depth.type(), CV_16UC1);
   EXPECT_EQ(f.mask.type(), CV_8UC1);
   EXPECT_EQ(f.bgr.size(), cv::Size(640, 480));
   EXPECT_DOUBLE_EQ(f.stamp, 1000.0);
-  EXPECT_DOUBLE_EQ(dynamic_->render(30).stamp, 1001.0);
-  EXPECT_EQ(dynamic_->numFrames(), 300);
-  EXPECT_THROW(dynamic_->render(300), std::out_of_range);
-  EXPECT_THROW(dynamic_->render(-1), std::out_of_range);
+  EXPECT_DOUBLE_EQ(dynamicScene().render(30).stamp, 1001.0);
+  EXPECT_EQ(dynamicScene().numFrames(), 300);
+  EXPECT_THROW(dynamicScene().render(300), std::out_of_range);
+  EXPECT_THROW(dynamicScene().render(-1), std::out_of_range);
 }
 
 TEST_F(SyntheticSceneTest, IsDeterministicAndFollowsTheSeed) {
-  const SyntheticFrame a = dynamic_->render(42);
-  const SyntheticFrame b = dynamic_->render(42);
+  const SyntheticFrame a = dynamicScene().render(42);
+  const SyntheticFrame b = dynamicScene().render(42);
   EXPECT_TRUE(identical(a.bgr, b.bgr) && identical(a.depth, b.depth) && identical(a.mask, b.mask));
   SyntheticSceneConfig other;
   other.seed = 7;
@@ -71,24 +80,24 @@ TEST_F(SyntheticSceneTest, IsDeterministicAndFollowsTheSeed) {
   EXPECT_TRUE(identical(rebuilt.render(42).bgr, a.bgr));
   EXPECT_FALSE(identical(reseeded.render(42).bgr, a.bgr));
   // Noise changes from frame to frame, not only with the seed.
-  EXPECT_FALSE(identical(dynamic_->render(43).bgr, a.bgr));
+  EXPECT_FALSE(identical(dynamicScene().render(43).bgr, a.bgr));
 }
 
 TEST_F(SyntheticSceneTest, DepthBackProjectsOntoSceneSurfaces) {
-  const CameraModel model(dynamic_->camera());
+  const CameraModel model(dynamicScene().camera());
   for (int index : {0, 97, 211}) {
-    const SyntheticFrame f = dynamic_->render(index);
-    const auto objects = dynamic_->movingObjects(index);
+    const SyntheticFrame f = dynamicScene().render(index);
+    const auto objects = dynamicScene().movingObjects(index);
     int checked = 0, masked = 0;
     for (int v = 1; v < f.depth.rows; v += 7) {
       for (int u = 3; u < f.depth.cols; u += 7) {
         const uint16_t raw = f.depth.at<uint16_t>(v, u);
         if (raw == 0) continue;
         const Eigen::Vector3d p =
-            f.T_world_cam * model.backProject({u, v}, raw / dynamic_->camera().depth_scale);
+            f.T_world_cam * model.backProject({u, v}, raw / dynamicScene().camera().depth_scale);
         const double tol = 1e-3;  // depth quantisation is 0.2 mm
-        double on_static = distanceToBoxSurface(p, dynamic_->room(), tol);
-        for (const auto& box : dynamic_->staticBoxes())
+        double on_static = distanceToBoxSurface(p, dynamicScene().room(), tol);
+        for (const auto& box : dynamicScene().staticBoxes())
           on_static = std::min(on_static, distanceToBoxSurface(p, box, tol));
         double on_object = 1e9;
         for (const auto& o : objects)
@@ -139,9 +148,9 @@ double warpError(const SyntheticFrame& fi, const SyntheticFrame& fj, const SE3& 
 }
 
 TEST_F(SyntheticSceneTest, PosesDepthAndTexturesAgreeAcrossFrames) {
-  const CameraIntrinsics& k = dynamic_->camera();
+  const CameraIntrinsics& k = dynamicScene().camera();
   for (auto [i, j] : {std::pair{10, 16}, std::pair{120, 129}}) {
-    const SyntheticFrame fi = dynamic_->render(i), fj = dynamic_->render(j);
+    const SyntheticFrame fi = dynamicScene().render(i), fj = dynamicScene().render(j);
     const double error = warpError(fi, fj, fi.T_world_cam, k);
     // A pose wrong by 1 cm must look clearly worse: the poses are what the texture says.
     SE3 shifted = fi.T_world_cam;
@@ -156,9 +165,9 @@ TEST_F(SyntheticSceneTest, PosesDepthAndTexturesAgreeAcrossFrames) {
 
 TEST_F(SyntheticSceneTest, MasksMarkMovingObjectsAtDepthEdges) {
   int frames_with_objects = 0;
-  for (int index = 0; index < dynamic_->numFrames(); index += 20) {
-    const SyntheticFrame f = dynamic_->render(index);
-    EXPECT_EQ(cv::countNonZero(static_->render(index).mask), 0) << "static frame " << index;
+  for (int index = 0; index < dynamicScene().numFrames(); index += 20) {
+    const SyntheticFrame f = dynamicScene().render(index);
+    EXPECT_EQ(cv::countNonZero(staticScene().render(index).mask), 0) << "static frame " << index;
     if (cv::countNonZero(f.mask) < 500) continue;
     ++frames_with_objects;
     // Along rows, a mask edge is a silhouette edge: the depth jumps there, except where feet meet the floor.
@@ -168,7 +177,7 @@ TEST_F(SyntheticSceneTest, MasksMarkMovingObjectsAtDepthEdges) {
         if (f.mask.at<uint8_t>(v, u) == f.mask.at<uint8_t>(v, u + 1)) continue;
         ++edges;
         const int d0 = f.depth.at<uint16_t>(v, u), d1 = f.depth.at<uint16_t>(v, u + 1);
-        if (std::abs(d0 - d1) > 0.05 * dynamic_->camera().depth_scale) ++jumps;
+        if (std::abs(d0 - d1) > 0.05 * dynamicScene().camera().depth_scale) ++jumps;
       }
     }
     EXPECT_GT(jumps, 0.8 * edges) << "frame " << index;
@@ -178,7 +187,7 @@ TEST_F(SyntheticSceneTest, MasksMarkMovingObjectsAtDepthEdges) {
 
 TEST_F(SyntheticSceneTest, OrbFindsDenseWellSpreadCorners) {
   const auto orb = cv::ORB::create(1000);
-  for (const SyntheticScene* scene : {dynamic_.get(), static_.get()}) {
+  for (const SyntheticScene* scene : {&dynamicScene(), &staticScene()}) {
     for (int index : {0, 75, 150, 225, 299}) {
       const SyntheticFrame f = scene->render(index);
       cv::Mat grey;
@@ -200,7 +209,7 @@ TEST_F(SyntheticSceneTest, OrbFindsDenseWellSpreadCorners) {
 }
 
 TEST_F(SyntheticSceneTest, CameraAndWalkersMoveAtPlausibleSpeeds) {
-  const Trajectory gt = dynamic_->groundTruth();
+  const Trajectory gt = dynamicScene().groundTruth();
   ASSERT_EQ(gt.size(), 300u);
   double path = 0, max_step = 0, max_turn = 0;
   for (std::size_t i = 1; i < gt.size(); ++i) {
@@ -215,7 +224,7 @@ TEST_F(SyntheticSceneTest, CameraAndWalkersMoveAtPlausibleSpeeds) {
   EXPECT_LT(speed, 0.6);
   EXPECT_LT(max_step, 0.025);
   EXPECT_LT(max_turn, 1.5 * CV_PI / 180);
-  const auto a = dynamic_->movingObjects(100), b = dynamic_->movingObjects(101);
+  const auto a = dynamicScene().movingObjects(100), b = dynamicScene().movingObjects(101);
   ASSERT_EQ(a.size(), 2u);
   for (std::size_t k = 0; k < a.size(); ++k) {
     const double walker_speed = (b[k].position - a[k].position).norm() * 30;
@@ -229,7 +238,7 @@ TEST_F(SyntheticSceneTest, RendersQuickly) {
   for (int i = 0; i < 10; ++i) {
     const std::clock_t start = std::clock();
     Stopwatch watch;
-    const SyntheticFrame f = dynamic_->render(i * 29);
+    const SyntheticFrame f = dynamicScene().render(i * 29);
     wall.add(watch.elapsedMs());
     cpu.add(1000.0 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
   }
