@@ -1,6 +1,6 @@
 #pragma once
-// Geometry of the synthetic scene: furniture layout, walking paths, the camera path and ray-box tests.
-// Box faces are numbered 2 * axis + side, side 0 for the low coordinate and 1 for the high one.
+// Geometry of the synthetic scene: room, furniture layout, walking paths and the camera path. Box faces
+// are numbered 2 * axis + side, side 0 for the low coordinate and 1 for the high one.
 #include <array>
 #include <vector>
 
@@ -31,7 +31,7 @@ MovingObjectState walkerAt(const WalkPath& path, const SyntheticSceneConfig& con
 CameraMotion cameraMotion(const SyntheticSceneConfig& config);
 SE3 cameraPoseAt(const SyntheticSceneConfig& config, const CameraMotion& motion, double t);
 
-// Texture coordinates (metres from the box's low corner) of point p on a face, and the face's extent.
+// The two axes spanning a face: texture coordinates are metres from the box's low corner along them.
 inline void faceAxes(int face, int& a, int& b) {
   const int axis = face / 2;
   a = axis == 0 ? 1 : 0;
