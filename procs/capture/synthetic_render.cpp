@@ -13,7 +13,7 @@ namespace {
 
 // A box to test rays against, in its own frame: a ray of camera direction dc is o + t * M * dc there, and t
 // is then the z-depth of the hit in the camera frame. The per-pixel part works in float on corners
-// relative to o; float keeps depth and texture coordinates well below a micrometre of error here.
+// relative to o; float keeps depth and texture coordinates within a few micrometres here.
 struct Candidate {
   AlignedBox box;
   Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
