@@ -1,0 +1,96 @@
+#pragma once
+// A frame's features (immutable once built, shared with the keyframe made from it) and the frame itself:
+// its pose and its matches to map points.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "bmp/common/camera_model.hpp"
+#include "bmp/common/se3.hpp"
+#include "tracker/orb_extractor.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+class MapPoint;
+class KeyFrame;
+
+// Constants derived from the camera and the options, shared by every frame and keyframe of a run.
+struct FrameGeometry {
+  FrameGeometry(const CameraIntrinsics& intrinsics, const TrackerConfig& config);
+  CameraModel camera;
+  ScalePyramid pyramid;
+  double fx, fy, cx, cy;
+  double bf;           // fx * virtual baseline: u_right = u - bf / depth
+  double close_depth;  // metres
+  double min_depth, max_depth;
+  double min_x, max_x, min_y, max_y;  // bounds of the undistorted image
+  static constexpr int kGridCols = 64;
+  static constexpr int kGridRows = 48;
+  double grid_cell_w, grid_cell_h;
+  bool inBounds(double u, double v) const { return u >= min_x && u < max_x && v >= min_y && v < max_y; }
+  Eigen::Vector2d project(const Eigen::Vector3d& p_cam) const {
+    return {fx * p_cam.x() / p_cam.z() + cx, fy * p_cam.y() / p_cam.z() + cy};
+  }
+};
+
+// How much a keypoint may count: 1 normally, 0 excluded (the hook the dynamic-object stage drives).
+// Called with the keypoint in distorted image pixels and its depth in metres (0 when none).
+using KeypointWeightFn = std::function<float(const cv::KeyPoint& key, float depth)>;
+
+struct Features {
+  std::vector<cv::KeyPoint> keys;      // distorted image, level-0 pixels
+  std::vector<Eigen::Vector2d> un;     // undistorted pixels
+  cv::Mat descriptors;                 // N x 32, CV_8U
+  std::vector<float> depth;            // metres, 0 where none or outside the valid range
+  std::vector<float> weight;           // 0..1, scales a keypoint's information in optimisation
+  std::vector<uint8_t> excluded;       // 1: takes no part in matching, optimisation or map points
+  std::vector<std::vector<int>> grid;  // keypoint indices per cell, row-major kGridCols x kGridRows
+
+  int size() const { return static_cast<int>(keys.size()); }
+  const uint8_t* descriptor(int i) const { return descriptors.ptr<uint8_t>(i); }
+  int level(int i) const { return keys[i].octave; }
+  bool hasDepth(int i) const { return depth[i] > 0.0f; }
+  double uRight(const FrameGeometry& g, int i) const {
+    return depth[i] > 0 ? un[i].x() - g.bf / depth[i] : -1.0;
+  }
+  // Usable keypoints within radius r of (u, v) on levels [min_level, max_level] (-1: any).
+  std::vector<int> inArea(const FrameGeometry& g, double u, double v, double r, int min_level = -1,
+                          int max_level = -1) const;
+  int numExcluded() const;
+};
+
+// Builds the per-keypoint data from ORB output. depth: CV_16UC1 (raw units, scaled by the camera's
+// depth_scale) or CV_32FC1 metres, registered to the colour image; may be empty.
+std::shared_ptr<const Features> buildFeatures(OrbFeatures orb, const cv::Mat& depth, const FrameGeometry& g,
+                                              const KeypointWeightFn& weight_fn,
+                                              const cv::Mat& exclusion_mask);
+
+class Frame {
+ public:
+  Frame() = default;
+  Frame(int64_t seq, double stamp, std::shared_ptr<const Features> features);
+
+  int64_t seq = -1;
+  double stamp = 0.0;
+  std::shared_ptr<const Features> features;
+  std::vector<std::shared_ptr<MapPoint>> points;  // per keypoint, null when unmatched
+  std::vector<uint8_t> outlier;                   // per keypoint, set by pose optimisation
+
+  void setPose(const SE3& T_world_cam);
+  const SE3& T_world_cam() const { return T_world_cam_; }
+  const SE3& T_cam_world() const { return T_cam_world_; }
+  Eigen::Vector3d center() const { return T_world_cam_.translation(); }
+  int numMatches() const;
+  void clearMatches();
+
+ private:
+  SE3 T_world_cam_ = SE3::Identity();
+  SE3 T_cam_world_ = SE3::Identity();
+};
+
+}  // namespace bmp::tracker

@@ -1,0 +1,49 @@
+#include "tracker/frame_pose.hpp"
+
+#include "tracker/map_point.hpp"
+#include "tracker/pose_optimizer.hpp"
+
+namespace bmp::tracker {
+
+int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options) {
+  const Features& f = *frame.features;
+  std::vector<PoseObservation> obs;
+  std::vector<int> index;
+  for (int i = 0; i < f.size(); ++i) {
+    const auto& mp = frame.points[i];
+    if (!mp || mp->bad || f.excluded[i]) {
+      frame.outlier[i] = 0;
+      continue;
+    }
+    PoseObservation o;
+    o.p_world = mp->p_world;
+    o.uv = f.un[i];
+    o.u_right = f.uRight(g, i);
+    o.information = g.pyramid.inv_sigma2[f.level(i)];
+    o.weight = f.weight[i];
+    obs.push_back(o);
+    index.push_back(i);
+  }
+  if (obs.size() < 3) return 0;
+  SE3 T_cam_world = frame.T_cam_world();
+  const int inliers = optimizePose(T_cam_world, obs, {g.fx, g.fy, g.cx, g.cy, g.bf}, options);
+  frame.setPose(T_cam_world.inverse());
+  for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;
+  return inliers;
+}
+
+int dropOutliers(Frame& frame) {
+  int in_map = 0;
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
+    if (!frame.points[i]) continue;
+    if (frame.outlier[i] || frame.points[i]->bad) {
+      frame.points[i].reset();
+      frame.outlier[i] = 0;
+    } else if (!frame.points[i]->observations.empty()) {
+      ++in_map;
+    }
+  }
+  return in_map;
+}
+
+}  // namespace bmp::tracker

@@ -1,0 +1,14 @@
+#pragma once
+// Pose-only optimisation of a frame against its matched map points: the glue between Frame and
+// optimizePose. Excluded keypoints are left out; keypoint weights scale their cost.
+#include "tracker/frame.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+// Sets the frame's pose and outlier flags; returns the number of inliers.
+int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options);
+// Unmatches the outliers; returns the matches left that are map points (not temporary ones).
+int dropOutliers(Frame& frame);
+
+}  // namespace bmp::tracker

@@ -1,0 +1,270 @@
+#include "tracker/matcher.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_set>
+
+namespace bmp::tracker {
+
+namespace {
+
+// Matches whose keypoint rotation differs from the dominant ones (three most populated bins) are wrong.
+class RotationHistogram {
+ public:
+  void add(float angle_a, float angle_b, int index) {
+    float rot = angle_a - angle_b;
+    if (rot < 0.0f) rot += 360.0f;
+    const int bin = std::min(kBins - 1, static_cast<int>(rot * kBins / 360.0f));
+    bins_[bin].push_back(index);
+  }
+  // Indices to drop.
+  std::vector<int> outliers() const {
+    std::array<std::size_t, kBins> sizes{};
+    for (int i = 0; i < kBins; ++i) sizes[i] = bins_[i].size();
+    std::array<int, kBins> order{};
+    for (int i = 0; i < kBins; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return sizes[a] > sizes[b]; });
+    std::vector<int> out;
+    const std::size_t top = sizes[order[0]];
+    for (int r = 0; r < kBins; ++r) {
+      const int bin = order[r];
+      const bool keep = r < 3 && sizes[bin] > 0.1 * top;
+      if (!keep) out.insert(out.end(), bins_[bin].begin(), bins_[bin].end());
+    }
+    return out;
+  }
+
+ private:
+  static constexpr int kBins = 30;
+  std::array<std::vector<int>, kBins> bins_;
+};
+
+bool isRealPoint(const std::shared_ptr<MapPoint>& mp) {
+  return mp && !mp->bad && !mp->observations.empty();
+}
+
+}  // namespace
+
+int matchFromLastFrame(Frame& cur, const Frame& last, const FrameGeometry& g, const TrackingOptions& o,
+                       double radius) {
+  const Features& fc = *cur.features;
+  const Features& fl = *last.features;
+  RotationHistogram hist;
+  int matches = 0;
+  for (int i = 0; i < fl.size(); ++i) {
+    const auto& mp = last.points[i];
+    if (!mp || last.outlier[i] || mp->bad) continue;
+    const Eigen::Vector3d p_cam = cur.T_cam_world() * mp->p_world;
+    if (p_cam.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = g.project(p_cam);
+    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const int level = fl.level(i);
+    const double r = radius * g.pyramid.scale[level];
+    const double ur_pred = uv.x() - g.bf / p_cam.z();
+    int best = -1, best_dist = 256;
+    for (int j : fc.inArea(g, uv.x(), uv.y(), r, std::max(0, level - 1), level + 1)) {
+      if (isRealPoint(cur.points[j])) continue;
+      if (fc.depth[j] > 0 && std::abs(ur_pred - fc.uRight(g, j)) > r) continue;
+      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), fc.descriptor(j));
+      if (d < best_dist) {
+        best_dist = d;
+        best = j;
+      }
+    }
+    if (best < 0 || best_dist > o.match_threshold_high) continue;
+    cur.points[best] = mp;
+    cur.outlier[best] = 0;
+    ++matches;
+    hist.add(fl.keys[i].angle, fc.keys[best].angle, best);
+  }
+  if (o.check_orientation) {
+    for (int j : hist.outliers()) {
+      if (cur.points[j]) {
+        cur.points[j].reset();
+        --matches;
+      }
+    }
+  }
+  return matches;
+}
+
+int matchLocalPoints(Frame& cur, const std::vector<std::shared_ptr<MapPoint>>& points, const FrameGeometry& g,
+                     const TrackingOptions& o, double radius) {
+  const Features& f = *cur.features;
+  std::unordered_set<const MapPoint*> already;
+  for (const auto& mp : cur.points)
+    if (mp) already.insert(mp.get());
+  const Eigen::Vector3d center = cur.center();
+  int matches = 0;
+  for (const auto& mp : points) {
+    if (mp->bad || already.count(mp.get())) continue;
+    const Eigen::Vector3d p_cam = cur.T_cam_world() * mp->p_world;
+    if (p_cam.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = g.project(p_cam);
+    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const Eigen::Vector3d ray = mp->p_world - center;
+    const double dist = ray.norm();
+    if (dist < 0.8 * mp->min_distance || dist > 1.2 * mp->max_distance) continue;
+    const double view_cos = ray.dot(mp->normal) / dist;
+    if (view_cos < 0.5) continue;
+    ++mp->visible;
+    const int level = mp->predictLevel(dist, g);
+    // A wider window when the point is seen from a direction far from its usual one.
+    const double r = radius * g.pyramid.scale[level] * (view_cos > 0.998 ? 1.0 : 1.6);
+    const double ur_pred = uv.x() - g.bf / p_cam.z();
+    int best = -1, best_dist = 256, second_dist = 256, best_level = -1, second_level = -1;
+    for (int j : f.inArea(g, uv.x(), uv.y(), r, level - 1, level)) {
+      if (isRealPoint(cur.points[j])) continue;
+      if (f.depth[j] > 0 && std::abs(ur_pred - f.uRight(g, j)) > r) continue;
+      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), f.descriptor(j));
+      if (d < best_dist) {
+        second_dist = best_dist;
+        second_level = best_level;
+        best_dist = d;
+        best_level = f.level(j);
+        best = j;
+      } else if (d < second_dist) {
+        second_dist = d;
+        second_level = f.level(j);
+      }
+    }
+    if (best < 0 || best_dist > o.match_threshold_high) continue;
+    if (best_level == second_level && best_dist > o.local_match_ratio * second_dist) continue;
+    cur.points[best] = mp;
+    cur.outlier[best] = 0;
+    ++matches;
+  }
+  return matches;
+}
+
+int matchByDescriptors(const Features& f, const std::vector<std::shared_ptr<MapPoint>>& points, double ratio,
+                       int max_distance, std::vector<std::shared_ptr<MapPoint>>& matches) {
+  std::vector<int> best_for_key(f.size(), 256);
+  std::vector<std::shared_ptr<MapPoint>> chosen(f.size());
+  for (const auto& mp : points) {
+    if (!mp || mp->bad) continue;
+    int best = -1, best_dist = 256, second_dist = 256;
+    const uint8_t* d_mp = mp->descriptor.ptr<uint8_t>(0);
+    for (int j = 0; j < f.size(); ++j) {
+      if (f.excluded[j]) continue;
+      const int d = hamming(d_mp, f.descriptor(j));
+      if (d < best_dist) {
+        second_dist = best_dist;
+        best_dist = d;
+        best = j;
+      } else if (d < second_dist) {
+        second_dist = d;
+      }
+    }
+    if (best < 0 || best_dist > max_distance || best_dist > ratio * second_dist) continue;
+    if (best_dist < best_for_key[best]) {
+      best_for_key[best] = best_dist;
+      chosen[best] = mp;
+    }
+  }
+  int n = 0;
+  for (int j = 0; j < f.size(); ++j) {
+    if (chosen[j] && !matches[j]) {
+      matches[j] = chosen[j];
+      ++n;
+    }
+  }
+  return n;
+}
+
+int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoint>>& points,
+               const FrameGeometry& g, double radius, double chi2) {
+  const Features& f = *kf->features;
+  const Eigen::Vector3d center = kf->center();
+  int fused = 0;
+  for (const auto& mp : points) {
+    if (!mp || mp->bad || mp->observations.count(kf)) continue;
+    const Eigen::Vector3d p_cam = kf->T_cam_world() * mp->p_world;
+    if (p_cam.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = g.project(p_cam);
+    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const Eigen::Vector3d ray = mp->p_world - center;
+    const double dist = ray.norm();
+    if (dist < 0.8 * mp->min_distance || dist > 1.2 * mp->max_distance) continue;
+    if (ray.dot(mp->normal) < 0.5 * dist) continue;
+    const int level = mp->predictLevel(dist, g);
+    const double r = radius * g.pyramid.scale[level];
+    const double ur_pred = uv.x() - g.bf / p_cam.z();
+    int best = -1, best_dist = 256;
+    for (int j : f.inArea(g, uv.x(), uv.y(), r, std::max(0, level - 1), level)) {
+      const double inv_s2 = g.pyramid.inv_sigma2[f.level(j)];
+      double e2 = (f.un[j] - uv).squaredNorm();
+      if (f.depth[j] > 0) {
+        const double eu = ur_pred - f.uRight(g, j);
+        e2 += eu * eu;
+      }
+      if (e2 * inv_s2 > chi2) continue;
+      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), f.descriptor(j));
+      if (d < best_dist) {
+        best_dist = d;
+        best = j;
+      }
+    }
+    if (best < 0 || best_dist > 50) continue;
+    const auto existing = kf->points[best];
+    if (existing && !existing->bad) {
+      if (existing->observations.size() >= mp->observations.size())
+        map.replacePoint(mp, existing);
+      else
+        map.replacePoint(existing, mp);
+    } else {
+      map.addObservation(kf, best, mp);
+    }
+    ++fused;
+  }
+  return fused;
+}
+
+std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, const KeyFrame& kf2,
+                                                       const FrameGeometry& g, int max_distance,
+                                                       double ratio) {
+  const Features& f1 = *kf1.features;
+  const Features& f2 = *kf2.features;
+  // Essential matrix from kf1's normalised coordinates to kf2's: x2^T E x1 = 0.
+  const SE3 T21 = kf2.T_cam_world() * kf1.T_world_cam();
+  const Eigen::Matrix3d E = skew(T21.translation()) * T21.rotation();
+  std::vector<int> cand2;
+  for (int j = 0; j < f2.size(); ++j)
+    if (!f2.excluded[j] && !kf2.points[j]) cand2.push_back(j);
+  std::vector<std::pair<int, int>> out;
+  std::vector<int> taken(f2.size(), -1);
+  std::vector<int> taken_dist(f2.size(), 256);
+  for (int i = 0; i < f1.size(); ++i) {
+    if (f1.excluded[i] || kf1.points[i]) continue;
+    const Eigen::Vector3d x1((f1.un[i].x() - g.cx) / g.fx, (f1.un[i].y() - g.cy) / g.fy, 1.0);
+    const Eigen::Vector3d line = E * x1;  // in kf2's normalised image
+    const double line_norm = std::hypot(line.x(), line.y());
+    if (line_norm < 1e-12) continue;
+    int best = -1, best_dist = 256, second_dist = 256;
+    for (int j : cand2) {
+      const int d = hamming(f1.descriptor(i), f2.descriptor(j));
+      if (d >= second_dist) continue;
+      const Eigen::Vector3d x2((f2.un[j].x() - g.cx) / g.fx, (f2.un[j].y() - g.cy) / g.fy, 1.0);
+      const double dist_px = std::abs(line.dot(x2)) / line_norm * g.fx;
+      if (dist_px * dist_px > 3.84 * g.pyramid.sigma2[f2.level(j)]) continue;
+      if (d < best_dist) {
+        second_dist = best_dist;
+        best_dist = d;
+        best = j;
+      } else {
+        second_dist = d;
+      }
+    }
+    if (best < 0 || best_dist > max_distance || best_dist > ratio * second_dist) continue;
+    if (best_dist < taken_dist[best]) {
+      taken_dist[best] = best_dist;
+      taken[best] = i;
+    }
+  }
+  for (int j = 0; j < f2.size(); ++j)
+    if (taken[j] >= 0) out.emplace_back(taken[j], j);
+  return out;
+}
+
+}  // namespace bmp::tracker

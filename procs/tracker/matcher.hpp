@@ -1,0 +1,42 @@
+#pragma once
+// Descriptor matching between frames, keyframes and map points: by projection (a predicted position, a
+// search window scaled with the pyramid level, Hamming distance, ratio and rotation-consistency checks)
+// and by descriptors alone (when no pose prediction can be trusted).
+#include <memory>
+#include <vector>
+
+#include "tracker/frame.hpp"
+#include "tracker/key_frame.hpp"
+#include "tracker/map.hpp"
+#include "tracker/map_point.hpp"
+
+namespace bmp::tracker {
+
+// Projects the last frame's matched points into `current` (whose pose is the prediction) and matches them
+// within radius * scale(level) pixels. Returns the number of new matches.
+int matchFromLastFrame(Frame& current, const Frame& last, const FrameGeometry& g, const TrackingOptions& o,
+                       double radius);
+
+// Projects map points not yet matched in `current` and matches those inside the view frustum. Counts each
+// point seen in the frustum as visible. Returns the number of new matches.
+int matchLocalPoints(Frame& current, const std::vector<std::shared_ptr<MapPoint>>& points,
+                     const FrameGeometry& g, const TrackingOptions& o, double radius);
+
+// Pose-free matching: for each point, the frame keypoint with the closest descriptor, accepted under
+// `max_distance` and the ratio test; each keypoint keeps its best point. Fills empty slots of `matches`
+// (sized like the features). Returns the number of matches made.
+int matchByDescriptors(const Features& features, const std::vector<std::shared_ptr<MapPoint>>& points,
+                       double ratio, int max_distance, std::vector<std::shared_ptr<MapPoint>>& matches);
+
+// Projects points into kf: an unobserved keypoint gains the observation, an observed one is merged with
+// the point (the one with fewer observations is replaced). Returns merges + new observations.
+int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoint>>& points,
+               const FrameGeometry& g, double radius, double chi2);
+
+// Keypoints of kf1 and kf2 without map points whose descriptors agree and which lie near each other's
+// epipolar line. Returns index pairs (kf1, kf2).
+std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, const KeyFrame& kf2,
+                                                       const FrameGeometry& g, int max_distance,
+                                                       double ratio);
+
+}  // namespace bmp::tracker

@@ -1,0 +1,56 @@
+#include "tracker/offline_runner.hpp"
+
+#include <filesystem>
+#include <memory>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "capture/tum_sequence.hpp"
+
+namespace bmp::tracker {
+
+OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const OfflineOptions& options) {
+  OfflineResult out;
+  int64_t seq = 0;
+  while (options.max_frames < 0 || out.frames < options.max_frames) {
+    auto frame = next();
+    if (!frame) break;
+    TrackerInput input;
+    input.stamp = frame->stamp;
+    input.seq = seq++;
+    input.image = frame->image;
+    input.depth = frame->depth;
+    TrackResult r = tracker.track(input);
+    out.track_ms.add(r.processing_ms);
+    out.frames_lost += r.state == TrackingState::kLost;
+    out.lost_at_end = r.state == TrackingState::kLost;
+    ++out.frames;
+    if (options.on_result) options.on_result(r);
+    out.results.push_back(std::move(r));
+  }
+  tracker.finish();
+  out.trajectory = tracker.trajectory();
+  out.keyframe_trajectory = tracker.keyFrameTrajectory();
+  return out;
+}
+
+FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth) {
+  auto index = std::make_shared<capture::SequenceIndex>(capture::indexSequence(dir));
+  if (groundtruth) *groundtruth = index->groundtruth;
+  auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
+  return [index, position]() -> std::optional<OfflineFrame> {
+    while (*position < index->frames.size()) {
+      const auto& pair = index->frames[(*position)++];
+      if (!std::filesystem::exists(pair.rgb_path) || !std::filesystem::exists(pair.depth_path)) continue;
+      OfflineFrame f;
+      f.stamp = pair.rgb_stamp;
+      f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
+      f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
+      if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1) continue;
+      return f;
+    }
+    return std::nullopt;
+  };
+}
+
+}  // namespace bmp::tracker

@@ -1,0 +1,47 @@
+#pragma once
+// Runs the tracker over frames without LCM, for tests and benchmarks: from a TUM-format folder or any
+// frame provider. Image loading is not timed; tracking is.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "bmp/common/timing.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+#include "tracker/tracker.hpp"
+
+namespace bmp::tracker {
+
+struct OfflineFrame {
+  double stamp = 0.0;
+  cv::Mat image;  // BGR or gray
+  cv::Mat depth;  // CV_16UC1 or CV_32FC1 metres
+};
+// Returns the next frame, or nullopt at the end.
+using FrameProvider = std::function<std::optional<OfflineFrame>()>;
+
+struct OfflineOptions {
+  int max_frames = -1;                                // <0: all
+  std::function<void(const TrackResult&)> on_result;  // e.g. progress output
+};
+
+struct OfflineResult {
+  Trajectory trajectory;  // Tracker::trajectory() after finish()
+  Trajectory keyframe_trajectory;
+  std::vector<TrackResult> results;  // one per frame, in order
+  TimingStats track_ms;              // Tracker::track per frame
+  int frames = 0;
+  int frames_lost = 0;  // frames whose state was LOST
+  bool lost_at_end = false;
+};
+
+OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const OfflineOptions& options = {});
+
+// Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), starting
+// at `start`; pairs whose files are missing or unreadable are skipped. groundtruth receives the folder's
+// ground truth when not null.
+FrameProvider tumFolderFrames(const std::string& dir, int start = 0, Trajectory* groundtruth = nullptr);
+
+}  // namespace bmp::tracker

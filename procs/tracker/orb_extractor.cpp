@@ -1,0 +1,203 @@
+#include "tracker/orb_extractor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace bmp::tracker {
+
+namespace {
+constexpr int kPatchRadius = 15;    // orientation patch
+constexpr int kPatternRadius = 13;  // test pairs stay inside this circle under any rotation
+constexpr int kBorder = 19;         // corners nearer the edge cannot be described
+constexpr int kDescriptorBytes = 32;
+constexpr double kPatchSize = 31.0;
+
+// Uniform in [0, 1) from the raw generator: std distributions differ between standard libraries.
+double uniform01(std::mt19937& rng) {
+  return (static_cast<double>(rng()) + 0.5) / 4294967296.0;
+}
+}  // namespace
+
+ScalePyramid::ScalePyramid(int n, double f)
+    : levels(n), factor(f), log_factor(std::log(f)), scale(n), sigma2(n), inv_sigma2(n) {
+  for (int i = 0; i < n; ++i) {
+    scale[i] = std::pow(f, i);
+    sigma2[i] = scale[i] * scale[i];
+    inv_sigma2[i] = 1.0 / sigma2[i];
+  }
+}
+
+int hamming(const uint8_t* a, const uint8_t* b) {
+  int d = 0;
+  for (int i = 0; i < kDescriptorBytes; i += 8) {
+    uint64_t x, y;
+    std::memcpy(&x, a + i, 8);
+    std::memcpy(&y, b + i, 8);
+    d += __builtin_popcountll(x ^ y);
+  }
+  return d;
+}
+
+OrbExtractor::OrbExtractor(const OrbOptions& options)
+    : options_(options), pyramid_(options.num_levels, options.scale_factor) {
+  // Geometric share per level, as the image area shrinks by factor^2 and the scale by factor.
+  const double inv = 1.0 / options.scale_factor;
+  double n = options.num_features * (1.0 - inv) / (1.0 - std::pow(inv, options.num_levels));
+  int total = 0;
+  for (int l = 0; l + 1 < options.num_levels; ++l) {
+    per_level_.push_back(static_cast<int>(std::lround(n)));
+    total += per_level_.back();
+    n *= inv;
+  }
+  per_level_.push_back(std::max(0, options.num_features - total));
+
+  for (int v = 0; v <= kPatchRadius; ++v)
+    circle_half_width_.push_back(
+        static_cast<int>(std::floor(std::sqrt(kPatchRadius * kPatchRadius - v * v) + 0.5)));
+
+  // BRIEF's isotropic Gaussian sampling (sigma = patch/5), restricted to the rotation-safe circle.
+  std::mt19937 rng(20261122u);
+  const double sigma = kPatchSize / 5.0;
+  while (pattern_.size() < 512) {
+    const double r = std::sqrt(-2.0 * std::log(uniform01(rng)));
+    const double a = 2.0 * M_PI * uniform01(rng);
+    const cv::Point2f p(static_cast<float>(std::round(sigma * r * std::cos(a))),
+                        static_cast<float>(std::round(sigma * r * std::sin(a))));
+    if (p.x * p.x + p.y * p.y <= kPatternRadius * kPatternRadius) pattern_.push_back(p);
+  }
+}
+
+void OrbExtractor::detectLevel(const cv::Mat& image, int target, std::vector<cv::KeyPoint>& out) const {
+  std::vector<cv::KeyPoint> corners;
+  cv::FAST(image, corners, options_.fast_min_threshold, true);
+  const int w = image.cols, h = image.rows;
+  const int cell = options_.cell_size;
+  const int cols = (w + cell - 1) / cell, rows = (h + cell - 1) / cell;
+  // A cell keeps only its strong corners when it has any, else its weak ones (texture-poor regions).
+  std::vector<uint8_t> strong(static_cast<std::size_t>(cols * rows), 0);
+  std::vector<cv::KeyPoint> inside;
+  inside.reserve(corners.size());
+  for (const auto& kp : corners) {
+    if (kp.pt.x < kBorder || kp.pt.y < kBorder || kp.pt.x >= w - kBorder || kp.pt.y >= h - kBorder) continue;
+    inside.push_back(kp);
+    if (kp.response >= options_.fast_threshold)
+      strong[static_cast<int>(kp.pt.y) / cell * cols + static_cast<int>(kp.pt.x) / cell] = 1;
+  }
+  std::vector<cv::KeyPoint> kept;
+  kept.reserve(inside.size());
+  for (const auto& kp : inside) {
+    const bool cell_strong =
+        strong[static_cast<int>(kp.pt.y) / cell * cols + static_cast<int>(kp.pt.x) / cell];
+    if (!cell_strong || kp.response >= options_.fast_threshold) kept.push_back(kp);
+  }
+  if (static_cast<int>(kept.size()) <= target) {
+    out = std::move(kept);
+    return;
+  }
+  // Buckets sized so that there are about as many buckets as wanted features.
+  const double area = static_cast<double>(w - 2 * kBorder) * (h - 2 * kBorder);
+  const double side = std::max(4.0, std::sqrt(area / target));
+  const int bcols = std::max(1, static_cast<int>(std::ceil((w - 2 * kBorder) / side)));
+  const int brows = std::max(1, static_cast<int>(std::ceil((h - 2 * kBorder) / side)));
+  std::vector<std::vector<int>> buckets(static_cast<std::size_t>(bcols * brows));
+  for (int i = 0; i < static_cast<int>(kept.size()); ++i) {
+    const int bx = std::min(bcols - 1, static_cast<int>((kept[i].pt.x - kBorder) / side));
+    const int by = std::min(brows - 1, static_cast<int>((kept[i].pt.y - kBorder) / side));
+    buckets[by * bcols + bx].push_back(i);
+  }
+  for (auto& b : buckets)
+    std::sort(b.begin(), b.end(), [&](int a, int c) { return kept[a].response > kept[c].response; });
+  out.clear();
+  for (std::size_t rank = 0; static_cast<int>(out.size()) < target; ++rank) {
+    bool any = false;
+    for (const auto& b : buckets) {
+      if (rank >= b.size()) continue;
+      any = true;
+      out.push_back(kept[b[rank]]);
+      if (static_cast<int>(out.size()) >= target) break;
+    }
+    if (!any) break;
+  }
+}
+
+float OrbExtractor::orientation(const cv::Mat& image, const cv::Point2f& pt) const {
+  const int step = static_cast<int>(image.step1());
+  const uint8_t* center = image.ptr<uint8_t>(cvRound(pt.y)) + cvRound(pt.x);
+  int m01 = 0, m10 = 0;
+  for (int u = -kPatchRadius; u <= kPatchRadius; ++u) m10 += u * center[u];
+  for (int v = 1; v <= kPatchRadius; ++v) {
+    int row_sum = 0;
+    const int d = circle_half_width_[v];
+    for (int u = -d; u <= d; ++u) {
+      const int below = center[u + v * step], above = center[u - v * step];
+      row_sum += below - above;
+      m10 += u * (below + above);
+    }
+    m01 += v * row_sum;
+  }
+  float angle = static_cast<float>(cv::fastAtan2(static_cast<float>(m01), static_cast<float>(m10)));
+  return angle;
+}
+
+void OrbExtractor::describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint8_t* out) const {
+  const double a = kp.angle * M_PI / 180.0;
+  const double c = std::cos(a), s = std::sin(a);
+  const int step = static_cast<int>(blurred.step1());
+  const uint8_t* center = blurred.ptr<uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
+  auto value = [&](const cv::Point2f& p) {
+    const int x = static_cast<int>(std::lround(p.x * c - p.y * s));
+    const int y = static_cast<int>(std::lround(p.x * s + p.y * c));
+    return center[y * step + x];
+  };
+  for (int byte = 0; byte < kDescriptorBytes; ++byte) {
+    uint8_t bits = 0;
+    for (int bit = 0; bit < 8; ++bit) {
+      const int k = 2 * (byte * 8 + bit);
+      if (value(pattern_[k]) < value(pattern_[k + 1])) bits |= static_cast<uint8_t>(1u << bit);
+    }
+    out[byte] = bits;
+  }
+}
+
+OrbFeatures OrbExtractor::extract(const cv::Mat& gray) const {
+  CV_Assert(gray.type() == CV_8UC1);
+  OrbFeatures result;
+  std::vector<cv::Mat> descriptor_blocks;
+  cv::Mat level_image = gray;
+  for (int level = 0; level < pyramid_.levels; ++level) {
+    if (level > 0) {
+      const cv::Size size(static_cast<int>(std::lround(gray.cols / pyramid_.scale[level])),
+                          static_cast<int>(std::lround(gray.rows / pyramid_.scale[level])));
+      if (size.width <= 2 * kBorder || size.height <= 2 * kBorder) break;
+      cv::Mat next;
+      cv::resize(level_image, next, size, 0, 0, cv::INTER_LINEAR);
+      level_image = next;
+    }
+    std::vector<cv::KeyPoint> keys;
+    detectLevel(level_image, per_level_[level], keys);
+    if (keys.empty()) continue;
+    cv::Mat blurred;
+    cv::GaussianBlur(level_image, blurred, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);
+    cv::Mat desc(static_cast<int>(keys.size()), kDescriptorBytes, CV_8U);
+    const float scale = static_cast<float>(pyramid_.scale[level]);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      auto& kp = keys[i];
+      kp.angle = orientation(level_image, kp.pt);
+      describe(blurred, kp, desc.ptr<uint8_t>(static_cast<int>(i)));
+      kp.octave = level;
+      kp.size = static_cast<float>(kPatchSize) * scale;
+      kp.pt *= scale;
+      result.keys.push_back(kp);
+    }
+    descriptor_blocks.push_back(desc);
+  }
+  if (!descriptor_blocks.empty()) cv::vconcat(descriptor_blocks, result.descriptors);
+  return result;
+}
+
+}  // namespace bmp::tracker

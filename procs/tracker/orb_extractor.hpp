@@ -1,0 +1,52 @@
+#pragma once
+// ORB features: FAST corners over a scale pyramid, spread evenly over each level by grid bucketing (the
+// strongest corner of every bucket first, then the second of every bucket, ...), oriented by intensity
+// centroid, described by a rotated 256-bit binary test pattern of our own (fixed-seed Gaussian pairs).
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+// Scale of every pyramid level and the matching measurement variance (one pixel at that level).
+struct ScalePyramid {
+  ScalePyramid(int levels, double factor);
+  int levels;
+  double factor;
+  double log_factor;
+  std::vector<double> scale;   // level -> factor^level
+  std::vector<double> sigma2;  // level -> scale^2
+  std::vector<double> inv_sigma2;
+};
+
+struct OrbFeatures {
+  std::vector<cv::KeyPoint> keys;  // level-0 pixels of the input image; octave = level, angle in degrees
+  cv::Mat descriptors;             // keys.size() x 32, CV_8U
+};
+
+class OrbExtractor {
+ public:
+  explicit OrbExtractor(const OrbOptions& options);
+  // Thread-safe (no mutable state). gray: CV_8UC1.
+  OrbFeatures extract(const cv::Mat& gray) const;
+  const ScalePyramid& pyramid() const { return pyramid_; }
+
+ private:
+  void detectLevel(const cv::Mat& image, int target, std::vector<cv::KeyPoint>& out) const;
+  float orientation(const cv::Mat& image, const cv::Point2f& pt) const;
+  void describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint8_t* out) const;
+
+  OrbOptions options_;
+  ScalePyramid pyramid_;
+  std::vector<int> per_level_;          // features wanted per level
+  std::vector<int> circle_half_width_;  // of the orientation patch, per row offset
+  std::vector<cv::Point2f> pattern_;    // 512 points: pairs (2k, 2k+1)
+};
+
+// Hamming distance of two 32-byte descriptors.
+int hamming(const uint8_t* a, const uint8_t* b);
+
+}  // namespace bmp::tracker

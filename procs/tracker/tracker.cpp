@@ -1,0 +1,212 @@
+#include "tracker/tracker.hpp"
+
+#include <algorithm>
+
+#include <opencv2/imgproc.hpp>
+
+#include "bmp/common/timing.hpp"
+
+namespace bmp::tracker {
+
+const char* toString(TrackingState state) {
+  switch (state) {
+    case TrackingState::kInitialising:
+      return "INITIALISING";
+    case TrackingState::kOk:
+      return "OK";
+    case TrackingState::kLost:
+      return "LOST";
+    case TrackingState::kRelocalised:
+      return "RELOCALISED";
+  }
+  return "?";
+}
+
+Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
+    : config_(config),
+      geometry_(std::make_shared<const FrameGeometry>(camera, config)),
+      extractor_(config.orb),
+      mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)) {}
+
+Tracker::~Tracker() {
+  finish();
+}
+
+void Tracker::finish() {
+  mapper_->finish();
+}
+
+TrackResult Tracker::track(const TrackerInput& input) {
+  Stopwatch watch;
+  TrackResult result;
+  Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
+  {
+    std::lock_guard<std::mutex> lock(map_.mutex());
+    result.keyframe_updates = mapper_->takePoseUpdates();
+    bool tracked = false;
+    if (state_ == TrackingState::kInitialising) {
+      tracked = initialise(frame, result);
+    } else {
+      prepareLastFrame();  // follow BA corrections and fusions; temporary depth points for the motion model
+      if (state_ == TrackingState::kLost) {
+        tracked = relocalise(frame) && trackLocalMap(frame);
+        if (tracked) last_reloc_seq_ = frame.seq;
+      } else {
+        tracked = (trackWithMotionModel(frame) || trackReferenceKeyFrame(frame)) && trackLocalMap(frame);
+      }
+      if (tracked) {
+        state_ = last_reloc_seq_ == frame.seq ? TrackingState::kRelocalised : TrackingState::kOk;
+        // After relocalisation the last frame is from before the loss: no velocity from it.
+        if (state_ == TrackingState::kOk)
+          velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
+        else
+          velocity_.reset();
+        result.num_tracked = countTracked(frame);
+        if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
+      } else {
+        state_ = TrackingState::kLost;
+        velocity_.reset();
+      }
+    }
+    if (tracked) rememberFrame(frame);
+    result.state = state_;
+    result.T_world_cam = frame.T_world_cam();
+    result.num_map_points = static_cast<int>(map_.numPoints());
+    result.num_keyframes = static_cast<int>(map_.numKeyFrames());
+    result.reference_keyframe_id = reference_kf_ ? reference_kf_->id : -1;
+  }
+  if (!config_.mapping.threaded) mapper_->processQueued();
+  result.processing_ms = watch.elapsedMs();
+  return result;
+}
+
+Frame Tracker::makeFrame(const TrackerInput& input, TrackResult& result) const {
+  Stopwatch watch;
+  cv::Mat gray;
+  if (input.image.channels() == 3)
+    cv::cvtColor(input.image, gray, cv::COLOR_BGR2GRAY);
+  else
+    gray = input.image;
+  auto features = buildFeatures(extractor_.extract(gray), input.depth, *geometry_, input.keypoint_weight,
+                                input.exclusion_mask);
+  result.stamp = input.stamp;
+  result.seq = input.seq;
+  result.num_keypoints = features->size();
+  result.num_excluded = features->numExcluded();
+  result.extract_ms = watch.elapsedMs();
+  return Frame(input.seq, input.stamp, std::move(features));
+}
+
+bool Tracker::initialise(Frame& frame, TrackResult& result) {
+  const Features& f = *frame.features;
+  int with_depth = 0;
+  for (int i = 0; i < f.size(); ++i) with_depth += f.hasDepth(i) && !f.excluded[i];
+  if (with_depth < config_.tracking.init_min_keypoints) return false;
+  frame.setPose(SE3::Identity());
+  auto kf = std::make_shared<KeyFrame>(map_.newKeyFrameId(), frame);
+  map_.addKeyFrame(kf);
+  for (int i = 0; i < f.size(); ++i) {
+    if (!f.hasDepth(i) || f.excluded[i]) continue;
+    auto mp = std::make_shared<MapPoint>(
+        map_.newPointId(), geometry_->camera.backProject(f.un[i], f.depth[i]), f.descriptors.row(i), kf->id);
+    mp->initGeometry(kf->center(), f.level(i), *geometry_);
+    map_.addPoint(mp);
+    map_.addObservation(kf.get(), i, mp);
+    frame.points[i] = mp;
+  }
+  mapper_->submit(kf);
+  reference_kf_ = kf;
+  last_keyframe_seq_ = frame.seq;
+  state_ = TrackingState::kOk;
+  result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
+  result.num_tracked = 0;
+  return true;
+}
+
+bool Tracker::needNewKeyFrame(const Frame& frame) const {
+  const auto& k = config_.keyframes;
+  if (!mapper_->acceptsKeyFrames()) return false;
+  const int num_kfs = static_cast<int>(map_.numKeyFrames());
+  if (frame.seq - last_reloc_seq_ < k.max_frames && num_kfs > k.max_frames) return false;
+  const int ref_matches = reference_kf_->trackedPoints(num_kfs <= 2 ? 1 : 2);
+  const Features& f = *frame.features;
+  int tracked_close = 0, untracked_close = 0;
+  for (int i = 0; i < f.size(); ++i) {
+    if (!f.hasDepth(i) || f.depth[i] > geometry_->close_depth || f.excluded[i]) continue;
+    const auto& mp = frame.points[i];
+    if (mp && !frame.outlier[i] && !mp->observations.empty())
+      ++tracked_close;
+    else
+      ++untracked_close;
+  }
+  const bool need_close = tracked_close < k.close_tracked_max && untracked_close > k.close_untracked_min;
+  const int inliers = countTracked(frame);
+  const double ratio = num_kfs < 2 ? 0.4 : k.ref_ratio;
+  const int64_t since = frame.seq - last_keyframe_seq_;
+  const bool c1a = since >= k.max_frames;
+  const bool c1b = since >= k.min_frames && mapper_->idle();
+  const bool c1c = inliers < 0.25 * ref_matches || need_close;
+  const bool c2 = (inliers < ratio * ref_matches || need_close) && inliers > 15;
+  return (c1a || c1b || c1c) && c2;
+}
+
+void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
+  auto kf = std::make_shared<KeyFrame>(map_.newKeyFrameId(), frame);
+  map_.addKeyFrame(kf);
+  // Points from depth: every close keypoint without one, and the nearest others up to new_points_min.
+  const Features& f = *frame.features;
+  std::vector<int> order;
+  for (int i = 0; i < f.size(); ++i)
+    if (f.hasDepth(i) && !f.excluded[i]) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return f.depth[a] < f.depth[b]; });
+  int count = 0;
+  for (int i : order) {
+    if (f.depth[i] > geometry_->close_depth && count >= config_.keyframes.new_points_min) break;
+    ++count;
+    if (kf->points[i]) continue;
+    const Eigen::Vector3d p = frame.T_world_cam() * geometry_->camera.backProject(f.un[i], f.depth[i]);
+    auto mp = std::make_shared<MapPoint>(map_.newPointId(), p, f.descriptors.row(i), kf->id);
+    mp->initGeometry(kf->center(), f.level(i), *geometry_);
+    map_.addPoint(mp);
+    map_.addObservation(kf.get(), i, mp);
+    frame.points[i] = mp;
+    frame.outlier[i] = 0;
+  }
+  mapper_->submit(kf);
+  reference_kf_ = kf;
+  last_keyframe_seq_ = frame.seq;
+  result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
+}
+
+int Tracker::countTracked(const Frame& frame) const {
+  int n = 0;
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
+    const auto& mp = frame.points[i];
+    n += mp && !frame.outlier[i] && !mp->bad && !mp->observations.empty();
+  }
+  return n;
+}
+
+void Tracker::rememberFrame(const Frame& frame) {
+  records_.push_back({frame.stamp, reference_kf_, reference_kf_->T_cam_world() * frame.T_world_cam()});
+  last_frame_ = frame;
+  last_T_ref_cam_ = records_.back().T_ref_cam;
+}
+
+Trajectory Tracker::trajectory() {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  Trajectory out;
+  out.reserve(records_.size());
+  for (const auto& r : records_)
+    out.push_back({r.stamp, normalized(r.reference->trajectoryPose() * r.T_ref_cam)});
+  return out;
+}
+
+Trajectory Tracker::keyFrameTrajectory() {
+  std::lock_guard<std::mutex> lock(map_.mutex());
+  Trajectory out;
+  for (const auto& kf : map_.keyFrames()) out.push_back({kf->stamp, kf->T_world_cam()});
+  return out;
+}
+
+}  // namespace bmp::tracker

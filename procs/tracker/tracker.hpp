@@ -1,0 +1,109 @@
+#pragma once
+// The tracker: one call per RGB-D frame. Read Tracker::track first; it is the algorithm's summary.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "bmp/common/camera_model.hpp"
+#include "bmp/common/se3.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+#include "tracker/frame.hpp"
+#include "tracker/local_mapper.hpp"
+#include "tracker/map.hpp"
+#include "tracker/orb_extractor.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+// Numbered as slam_pose_t's STATE_* constants.
+enum class TrackingState : int8_t { kInitialising = 0, kOk = 1, kLost = 2, kRelocalised = 3 };
+const char* toString(TrackingState state);
+
+struct TrackerInput {
+  double stamp = 0.0;  // seconds
+  int64_t seq = 0;
+  cv::Mat image;  // CV_8UC3 BGR or CV_8UC1 gray, distorted as captured
+  cv::Mat depth;  // CV_16UC1 (units of 1/depth_scale m) or CV_32FC1 metres, registered to image; may be empty
+  KeypointWeightFn keypoint_weight;  // optional: per-keypoint weight, 0 excludes
+  cv::Mat exclusion_mask;            // optional CV_8UC1: keypoints on nonzero pixels are excluded
+};
+
+struct TrackResult {
+  double stamp = 0.0;
+  int64_t seq = 0;
+  TrackingState state = TrackingState::kInitialising;
+  SE3 T_world_cam = SE3::Identity();  // meaningful when state is kOk or kRelocalised
+  int num_keypoints = 0;
+  int num_tracked = 0;   // inlier matches to map points used in the pose
+  int num_excluded = 0;  // keypoints excluded by the weight hook or mask
+  int num_map_points = 0;
+  int num_keyframes = 0;
+  int64_t reference_keyframe_id = -1;
+  std::optional<KeyFramePose> new_keyframe;    // made from this frame
+  std::vector<KeyFramePose> keyframe_updates;  // poses moved by local BA since the previous frame
+  double extract_ms = 0.0;                     // ORB extraction
+  double processing_ms = 0.0;                  // the whole call
+  bool ok() const { return state == TrackingState::kOk || state == TrackingState::kRelocalised; }
+};
+
+class Tracker {
+ public:
+  Tracker(const CameraIntrinsics& camera, const TrackerConfig& config);
+  ~Tracker();
+  Tracker(const Tracker&) = delete;
+  Tracker& operator=(const Tracker&) = delete;
+
+  TrackResult track(const TrackerInput& input);
+
+  // Lets local mapping finish its queue and stops its thread; track() must not be called afterwards.
+  void finish();
+  // Every tracked frame, placed through its reference keyframe's latest pose (so BA corrections count).
+  Trajectory trajectory();
+  Trajectory keyFrameTrajectory();
+  TrackingState state() const { return state_; }
+  // Drops the constant-velocity prediction (e.g. after a gap in the input).
+  void forgetMotion() { velocity_.reset(); }
+  const FrameGeometry& geometry() const { return *geometry_; }
+  const TrackerConfig& config() const { return config_; }
+
+ private:
+  Frame makeFrame(const TrackerInput& input, TrackResult& result) const;
+  bool initialise(Frame& frame, TrackResult& result);
+  bool trackWithMotionModel(Frame& frame);
+  bool trackReferenceKeyFrame(Frame& frame);
+  bool relocalise(Frame& frame);
+  bool trackLocalMap(Frame& frame);
+  void updateLocalMap(const Frame& frame);
+  bool needNewKeyFrame(const Frame& frame) const;
+  void insertKeyFrame(Frame& frame, TrackResult& result);
+  void prepareLastFrame();
+  void rememberFrame(const Frame& frame);
+  int countTracked(const Frame& frame) const;
+
+  struct FrameRecord {
+    double stamp;
+    std::shared_ptr<KeyFrame> reference;
+    SE3 T_ref_cam;
+  };
+
+  TrackerConfig config_;
+  std::shared_ptr<const FrameGeometry> geometry_;
+  OrbExtractor extractor_;
+  Map map_;  // declared before the mapper, which uses it
+  std::unique_ptr<LocalMapper> mapper_;
+  TrackingState state_ = TrackingState::kInitialising;
+  Frame last_frame_;
+  SE3 last_T_ref_cam_ = SE3::Identity();  // last frame relative to its reference keyframe
+  std::optional<SE3> velocity_;           // T_last_current of the previous step
+  std::shared_ptr<KeyFrame> reference_kf_;
+  std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
+  std::vector<std::shared_ptr<MapPoint>> local_points_;
+  int64_t last_keyframe_seq_ = 0;
+  int64_t last_reloc_seq_ = -1000000;
+  std::vector<FrameRecord> records_;
+};
+
+}  // namespace bmp::tracker

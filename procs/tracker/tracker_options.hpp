@@ -1,0 +1,87 @@
+#pragma once
+// Every tunable of the tracker, with its default. The library never reads files: tracker_config.hpp fills
+// this from YAML (config/tracker.yaml), tests set fields directly.
+#include <cstddef>
+
+namespace bmp::tracker {
+
+struct OrbOptions {
+  int num_features = 1000;     // per frame, over all levels
+  int num_levels = 8;          // pyramid levels
+  double scale_factor = 1.2;   // between levels
+  int fast_threshold = 20;     // FAST threshold a cell uses first
+  int fast_min_threshold = 7;  // used in cells where the first finds nothing
+  int cell_size = 30;          // pixels of the cells that get the lower threshold
+};
+
+struct TrackingOptions {
+  double min_depth_m = 0.1;  // keypoint depth outside [min, max] counts as none
+  double max_depth_m = 8.0;
+  double close_depth_m = 3.0;            // closer: depth is trusted (3-D residual, map point at once)
+  double virtual_baseline_m = 0.08;      // turns depth into a right-image coordinate u - fx*b/z
+  int init_min_keypoints = 500;          // keypoints with depth needed to start the map
+  int motion_search_radius = 7;          // pixels at level 0, projection from the last frame
+  int local_search_radius = 3;           // pixels at level 0, projection of the local map
+  int reloc_search_radius = 5;           // local map radius in the frames just after relocalisation
+  int match_threshold_high = 100;        // Hamming distance accepted for projection matches
+  int match_threshold_low = 50;          // stricter threshold for descriptor-only matches
+  double local_match_ratio = 0.8;        // best / second best (same level) in local map search
+  double descriptor_match_ratio = 0.75;  // Lowe ratio for keyframe and relocalisation matching
+  bool check_orientation = true;         // rotation histogram consistency in frame-to-frame matches
+  int min_matches_motion = 20;           // matches needed before optimising the motion-model pose
+  int min_inliers_motion = 10;           // inliers after optimisation for the motion model to count
+  int min_inliers_local_map = 30;        // inliers after local-map tracking for the frame to be OK
+  int min_inliers_after_reloc = 50;      // same, in the frames just after relocalisation
+  int max_local_keyframes = 60;          // size cap of the local map
+  int temporal_points = 0;               // nearest depth points made temporary in the last frame (0: off)
+};
+
+struct PoseOptimizerOptions {
+  int rounds = 4;  // optimisation rounds with outlier re-classification
+  int iterations_per_round = 10;
+  double chi2_mono = 5.991;  // 95 % chi-square, 2 dof
+  double chi2_rgbd = 7.815;  // 95 % chi-square, 3 dof
+};
+
+struct KeyframeOptions {
+  int max_frames = 30;           // a keyframe at least this often (frames)
+  int min_frames = 0;            // and not more often than this
+  double ref_ratio = 0.75;       // inliers below this fraction of the reference keyframe's points
+  int close_tracked_max = 100;   // fewer tracked close points than this ...
+  int close_untracked_min = 70;  // ... while this many close keypoints are unmatched: insert
+  int new_points_min = 100;      // map points created from depth per keyframe, at least (closest first)
+};
+
+struct MappingOptions {
+  bool threaded = true;              // local mapping in its own thread; false: inline, deterministic
+  std::size_t queue_capacity = 3;    // keyframes waiting for local mapping
+  int ba_window = 10;                // covisible keyframes optimised together with the new one
+  int ba_iterations_first = 5;       // before outlier removal
+  int ba_iterations_second = 10;     // after
+  int covisibility_min_weight = 15;  // shared points for a covisibility edge
+  int triangulation_neighbors = 10;
+  int fuse_neighbors = 10;
+  double point_found_ratio = 0.25;   // found / visible below this: culled
+  int point_min_observations = 2;    // keyframes; a point two keyframes old seen by fewer: culled
+  double keyframe_redundancy = 0.9;  // fraction of points seen by 3 other keyframes: culled
+};
+
+struct RelocalizationOptions {
+  int candidates = 5;           // keyframes tried with PnP
+  int score_descriptors = 300;  // frame descriptors used to rank keyframes
+  int min_matches = 15;         // descriptor matches for a candidate to be tried
+  int ransac_iterations = 200;
+  double ransac_reprojection_px = 4.0;
+  int min_pnp_inliers = 10;
+};
+
+struct TrackerConfig {
+  OrbOptions orb;
+  TrackingOptions tracking;
+  PoseOptimizerOptions pose;
+  KeyframeOptions keyframes;
+  MappingOptions mapping;
+  RelocalizationOptions reloc;
+};
+
+}  // namespace bmp::tracker

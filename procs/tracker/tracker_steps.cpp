@@ -1,0 +1,155 @@
+// The tracking steps of Tracker::track: motion model, reference keyframe, relocalisation, local map.
+#include <algorithm>
+#include <map>
+#include <unordered_set>
+
+#include "tracker/frame_pose.hpp"
+#include "tracker/matcher.hpp"
+#include "tracker/relocalizer.hpp"
+#include "tracker/tracker.hpp"
+
+namespace bmp::tracker {
+
+void Tracker::prepareLastFrame() {
+  if (!last_frame_.features) return;
+  for (auto& mp : last_frame_.points) {
+    while (mp && mp->bad && mp->replaced_by) mp = mp->replaced_by;
+    if (mp && (mp->bad || mp->temporary())) mp.reset();
+  }
+  if (reference_kf_) last_frame_.setPose(reference_kf_->trajectoryPose() * last_T_ref_cam_);
+  // Optionally, close keypoints of the last frame without a map point become temporary points, so the
+  // motion model has enough to match where the map is thin. They never enter the map. Off by default: they
+  // favour near (often moving) structure, and the map alone tracks better in dynamic scenes.
+  if (config_.tracking.temporal_points <= 0) return;
+  const Features& f = *last_frame_.features;
+  std::vector<int> order;
+  for (int i = 0; i < f.size(); ++i)
+    if (f.hasDepth(i) && !f.excluded[i]) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return f.depth[a] < f.depth[b]; });
+  int count = 0;
+  for (int i : order) {
+    if (count >= config_.tracking.temporal_points) break;
+    ++count;
+    if (last_frame_.points[i]) continue;
+    const Eigen::Vector3d p = last_frame_.T_world_cam() * geometry_->camera.backProject(f.un[i], f.depth[i]);
+    last_frame_.points[i] = std::make_shared<MapPoint>(-1, p, f.descriptors.row(i), -1);
+    last_frame_.outlier[i] = 0;
+  }
+}
+
+bool Tracker::trackWithMotionModel(Frame& frame) {
+  if (!velocity_ || !last_frame_.features) return false;
+  const auto& o = config_.tracking;
+  frame.setPose(last_frame_.T_world_cam() * *velocity_);
+  int matches = matchFromLastFrame(frame, last_frame_, *geometry_, o, o.motion_search_radius);
+  if (matches < o.min_matches_motion) {
+    frame.clearMatches();
+    matches = matchFromLastFrame(frame, last_frame_, *geometry_, o, 2.0 * o.motion_search_radius);
+  }
+  if (matches < o.min_matches_motion) {
+    frame.clearMatches();
+    return false;
+  }
+  optimizeFramePose(frame, *geometry_, config_.pose);
+  const bool ok = dropOutliers(frame) >= o.min_inliers_motion;
+  if (!ok) frame.clearMatches();
+  return ok;
+}
+
+bool Tracker::trackReferenceKeyFrame(Frame& frame) {
+  if (!reference_kf_) return false;
+  const auto& o = config_.tracking;
+  std::vector<std::shared_ptr<MapPoint>> points;
+  for (const auto& mp : reference_kf_->points)
+    if (mp && !mp->bad) points.push_back(mp);
+  frame.clearMatches();
+  std::vector<std::shared_ptr<MapPoint>> matches(frame.features->size());
+  if (matchByDescriptors(*frame.features, points, o.descriptor_match_ratio, o.match_threshold_high, matches) <
+      15)
+    return false;
+  frame.points = matches;
+  frame.setPose(last_frame_.T_world_cam());
+  optimizeFramePose(frame, *geometry_, config_.pose);
+  const bool ok = dropOutliers(frame) >= o.min_inliers_motion;
+  if (!ok) frame.clearMatches();
+  return ok;
+}
+
+bool Tracker::relocalise(Frame& frame) {
+  auto kf = relocalize(frame, map_, *geometry_, config_);
+  if (!kf) return false;
+  reference_kf_ = kf;
+  return true;
+}
+
+void Tracker::updateLocalMap(const Frame& frame) {
+  // Keyframes that see the frame's points, ranked by how many; then their best covisibles, parents, children.
+  std::map<KeyFrame*, int, KeyFrameIdLess> counts;
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
+    const auto& mp = frame.points[i];
+    if (!mp || frame.outlier[i] || mp->bad) continue;
+    for (const auto& [kf, idx] : mp->observations) {
+      (void)idx;
+      ++counts[kf];
+    }
+  }
+  std::vector<std::pair<int, KeyFrame*>> ranked;
+  for (const auto& [kf, n] : counts)
+    if (!kf->bad) ranked.emplace_back(n, kf);
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (!ranked.empty()) reference_kf_ = map_.keyFrame(ranked.front().second);
+  if (!reference_kf_ || reference_kf_->bad) {
+    auto kfs = map_.keyFrames();
+    reference_kf_ = kfs.empty() ? nullptr : kfs.back();
+  }
+  const std::size_t cap = static_cast<std::size_t>(config_.tracking.max_local_keyframes);
+  std::vector<KeyFrame*> local;
+  std::unordered_set<KeyFrame*> in_local;
+  auto add = [&](KeyFrame* kf) {
+    if (kf && !kf->bad && local.size() < cap && in_local.insert(kf).second) local.push_back(kf);
+  };
+  for (const auto& [n, kf] : ranked) add(kf);
+  const std::size_t first_ring = local.size();
+  for (std::size_t i = 0; i < first_ring && local.size() < cap; ++i) {
+    for (KeyFrame* nb : local[i]->bestCovisibles(10)) add(nb);
+    for (KeyFrame* child : local[i]->children) add(child);
+    add(local[i]->parent.get());
+  }
+  if (local.empty() && reference_kf_) add(reference_kf_.get());
+  local_keyframes_.clear();
+  local_points_.clear();
+  std::unordered_set<const MapPoint*> seen;
+  for (KeyFrame* kf : local) {
+    local_keyframes_.push_back(map_.keyFrame(kf));
+    for (const auto& mp : kf->points)
+      if (mp && !mp->bad && seen.insert(mp.get()).second) local_points_.push_back(mp);
+  }
+}
+
+bool Tracker::trackLocalMap(Frame& frame) {
+  const auto& o = config_.tracking;
+  updateLocalMap(frame);
+  const bool after_reloc = frame.seq - last_reloc_seq_ < 2 || state_ == TrackingState::kLost;
+  matchLocalPoints(frame, local_points_, *geometry_, o,
+                   after_reloc ? o.reloc_search_radius : o.local_search_radius);
+  optimizeFramePose(frame, *geometry_, config_.pose);
+  int inliers = 0;
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
+    const auto& mp = frame.points[i];
+    if (!mp || frame.outlier[i] || mp->bad) continue;
+    if (!mp->observations.empty()) {
+      ++mp->found;
+      ++inliers;
+    }
+  }
+  dropOutliers(frame);
+  // Temporary points helped the pose; they must not be mistaken for map points from here on.
+  for (auto& mp : frame.points)
+    if (mp && mp->temporary()) mp.reset();
+  const bool recently_relocalised = frame.seq - last_reloc_seq_ < config_.keyframes.max_frames;
+  return inliers >= (recently_relocalised || state_ == TrackingState::kLost ? o.min_inliers_after_reloc
+                                                                            : o.min_inliers_local_map);
+}
+
+}  // namespace bmp::tracker

@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tracker/pose_optimizer.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+TEST(PoseOptimizer, RecoversKnownPoseFromNoisyCorrespondencesWithOutliers) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(-2.0, 2.0), uz(1.0, 5.0), upx(0.0, 640.0), upy(0.0, 480.0);
+  std::normal_distribution<double> pixel_noise(0.0, 0.7);
+  const PoseCamera cam{540.0, 540.0, 320.0, 240.0, 540.0 * 0.08};
+  const SE3 T_cam_world_true =
+      makeSE3(Eigen::Vector3d(0.3, -0.1, 0.5),
+              Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.2, 1, 0.1).normalized())));
+  std::vector<PoseObservation> obs;
+  std::vector<bool> is_outlier;
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::Vector3d p_cam(ux(rng), ux(rng) * 0.75, uz(rng));
+    PoseObservation o;
+    o.p_world = T_cam_world_true.inverse() * p_cam;
+    const bool outlier = i % 5 == 0;  // 20 %
+    if (outlier) {
+      o.uv = Eigen::Vector2d(upx(rng), upy(rng));
+    } else {
+      o.uv = Eigen::Vector2d(cam.fx * p_cam.x() / p_cam.z() + cam.cx + pixel_noise(rng),
+                             cam.fy * p_cam.y() / p_cam.z() + cam.cy + pixel_noise(rng));
+    }
+    o.u_right = i % 2 == 0 ? o.uv.x() - cam.bf / p_cam.z() + pixel_noise(rng) : -1.0;  // half with depth
+    o.information = 1.0;
+    obs.push_back(o);
+    is_outlier.push_back(outlier);
+  }
+  // Start 10 cm and about 6 degrees away.
+  SE3 T = T_cam_world_true *
+          makeSE3(Eigen::Vector3d(0.06, -0.05, 0.06),
+                  Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, 0.5, -0.3).normalized())));
+  const int inliers = optimizePose(T, obs, cam, PoseOptimizerOptions{});
+
+  const SE3 error = T * T_cam_world_true.inverse();
+  EXPECT_LT(error.translation().norm(), 0.01);
+  EXPECT_LT(rotationAngle(error), 0.2 * M_PI / 180.0);
+  int caught = 0, false_alarms = 0;
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    if (is_outlier[i])
+      caught += obs[i].outlier;
+    else
+      false_alarms += obs[i].outlier;
+  }
+  EXPECT_GE(caught, 78);        // of 80 outliers
+  EXPECT_LE(false_alarms, 25);  // of 320 inliers (chi2 95 %: about 16 expected)
+  EXPECT_EQ(inliers, 400 - caught - false_alarms);
+}
+
+TEST(PoseOptimizer, WeightZeroObservationsTakeNoPart) {
+  const PoseCamera cam{500.0, 500.0, 320.0, 240.0, 40.0};
+  std::vector<PoseObservation> obs;
+  for (int i = 0; i < 50; ++i) {
+    const Eigen::Vector3d p(0.1 * (i % 10) - 0.5, 0.1 * (i / 10) - 0.25, 2.0 + 0.05 * (i % 7));
+    PoseObservation o;
+    o.p_world = p;
+    o.uv = Eigen::Vector2d(cam.fx * p.x() / p.z() + cam.cx, cam.fy * p.y() / p.z() + cam.cy);
+    if (i < 20) {  // consistent with a different pose, but excluded by weight 0
+      o.uv += Eigen::Vector2d(15.0, 0.0);
+      o.weight = 0.0;
+    }
+    obs.push_back(o);
+  }
+  SE3 T = SE3::Identity();
+  T.translation() = Eigen::Vector3d(0.01, 0.0, 0.0);
+  EXPECT_EQ(optimizePose(T, obs, cam, PoseOptimizerOptions{}), 30);
+  EXPECT_LT(T.translation().norm(), 1e-4);
+}
+
+}  // namespace
+}  // namespace bmp::tracker
