@@ -23,6 +23,16 @@ void writePng(const std::string& path, const cv::Mat& image) {
     throw std::runtime_error(path + ": cannot write image");
 }
 
+// bmp-capture and tum2lcm pick up DIR/camera.yaml, so the folder plays without --camera.
+void writeCameraYaml(const std::string& path, const CameraIntrinsics& k) {
+  std::ofstream out(path);
+  out << "# Camera of the synthetic sequence in this folder (written by bmp-synth).\ncamera:\n"
+      << "  width: " << k.width << "\n  height: " << k.height << "\n  fx: " << k.fx << "\n  fy: " << k.fy
+      << "\n  cx: " << k.cx << "\n  cy: " << k.cy << "\n  distortion: [0.0, 0.0, 0.0, 0.0, 0.0]\n"
+      << "  depth_scale: " << k.depth_scale << "\n";
+  if (!out) throw std::runtime_error(path + ": cannot write camera file");
+}
+
 }  // namespace
 
 void writeTumFolder(const SyntheticScene& scene, const std::string& dir,
@@ -46,6 +56,7 @@ void writeTumFolder(const SyntheticScene& scene, const std::string& dir,
   }
   if (!rgb_list || !depth_list) throw std::runtime_error(dir + ": writing rgb.txt / depth.txt failed");
   writeTumTrajectory(dir + "/groundtruth.txt", scene.groundTruth());
+  writeCameraYaml(dir + "/camera.yaml", scene.camera());
 }
 
 }  // namespace bmp::capture

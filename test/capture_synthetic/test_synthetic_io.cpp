@@ -8,12 +8,15 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "bmp/common/camera_config.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/image_codec.hpp"
 #include "bmp/common/tum_trajectory.hpp"
+#include "capture/camera_selection.hpp"
 #include "capture/synthetic_config.hpp"
 #include "capture/synthetic_source.hpp"
 #include "capture/tum_folder_writer.hpp"
+#include "capture/tum_source.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::capture {
@@ -173,6 +176,30 @@ TEST(SyntheticTumFolder, WritesAFolderThatReadsBack) {
     EXPECT_EQ(cv::norm(depth, f.depth, cv::NORM_INF), 0);
     EXPECT_EQ(cv::norm(mask, f.mask, cv::NORM_INF), 0);
   }
+}
+
+// The written folder is an ordinary TUM folder: the capture reader plays it, with the camera it carries.
+TEST(SyntheticTumFolder, PlaysThroughTheTumReader) {
+  const SyntheticScene scene(shortSequence(5));
+  const std::string dir = test::scratchDir("synthetic_tum_play").string();
+  writeTumFolder(scene, dir);
+  const std::string camera_file = cameraFileFor(dir, test::sourceDir() + "/config/cameras");
+  ASSERT_EQ(camera_file, dir + "/camera.yaml");
+  const Config camera_config = Config::fromFile(camera_file);
+  const CameraIntrinsics k = cameraFromConfig(camera_config.section("camera"));
+  camera_config.finish();
+  EXPECT_EQ(k.fx, scene.camera().fx);
+  EXPECT_EQ(k.depth_scale, scene.camera().depth_scale);
+  TumSource source(indexSequence(dir), k, {});
+  int played = 0;
+  while (auto frame = source.next()) {
+    const SyntheticFrame truth = scene.render(played);
+    EXPECT_NEAR(frame->stamp, truth.stamp, 1e-6);
+    EXPECT_EQ(cv::norm(decodeImage(frame->depth), truth.depth, cv::NORM_INF), 0);
+    ++played;
+  }
+  EXPECT_EQ(played, 5);
+  EXPECT_EQ(source.skips().total(), 0);
 }
 
 }  // namespace
