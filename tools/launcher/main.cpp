@@ -90,6 +90,10 @@ int launch(const ArgParser& args) {
   const LaunchPlan plan = makePlan(settings, request);
   log::info("run folder ", request.out_dir, ", LCM ", request.lcm_url);
 
+  // Every executable first: a missing one must not leave the others half started.
+  for (const auto& cmd : plan.processes)
+    if (!fs::exists(cmd.argv[0]))
+      throw std::runtime_error(cmd.argv[0] + ": not built (run tools/run, or build it)");
   StopSignal stop;
   OutputRelay relay;
   std::vector<Launched> launched;
