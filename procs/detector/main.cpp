@@ -57,40 +57,57 @@ std::string besideConfig(const bmp::Config& config, const std::string& path) {
   return (dir / path).string();
 }
 
-int run(bmp::ProcessContext& ctx) {
-  const DetectorConfig config = detectorConfigFromYaml(ctx.config);
-  const std::string dynamic_path =
+struct Settings {
+  DetectorConfig detector;
+  std::string dynamic_classes_path;
+  QueueMode mode = QueueMode::kLatest;
+  int queue_capacity = 64;
+  std::string frames_channel;
+  std::string detections_channel;
+};
+
+// Reads the whole configuration and rejects unknown keys before any work starts.
+Settings readSettings(const bmp::ProcessContext& ctx) {
+  Settings s;
+  s.detector = detectorConfigFromYaml(ctx.config);
+  s.dynamic_classes_path =
       besideConfig(ctx.config, ctx.config.get<std::string>("dynamic_classes", "dynamic_classes.yaml"));
   const bmp::Config process = ctx.config.section("process");
-  std::string mode_text = process.get<std::string>("mode", "latest");
-  const int capacity = process.get<int>("queue_capacity", 64);
+  std::string mode = process.get<std::string>("mode", "latest");
+  s.queue_capacity = process.get<int>("queue_capacity", s.queue_capacity);
   const bmp::Config channels = ctx.config.section("channels");
-  const std::string frames_channel = channels.get<std::string>("frames", "RGBD_FRAME");
-  const std::string detections_channel = channels.get<std::string>("detections", "DETECTIONS");
-  if (ctx.args.given("mode")) mode_text = ctx.args.value("mode");
-  QueueMode mode{};
+  s.frames_channel = channels.get<std::string>("frames", "RGBD_FRAME");
+  s.detections_channel = channels.get<std::string>("detections", "DETECTIONS");
+  if (ctx.args.given("mode")) mode = ctx.args.value("mode");
   try {
-    mode = parseQueueMode(mode_text);
+    s.mode = parseQueueMode(mode);
   } catch (const std::invalid_argument& e) {
     throw bmp::ConfigError(ctx.config.origin() + ": key 'process.mode' or --mode: " + e.what());
   }
-  if (capacity < 1)
+  if (s.queue_capacity < 1)
     throw bmp::ConfigError(ctx.config.origin() + ": key 'process.queue_capacity' must be >= 1");
   bmp::finishConfig(ctx);
+  return s;
+}
 
+int run(bmp::ProcessContext& ctx) {
+  const Settings settings = readSettings(ctx);
+  const std::string& frames_channel = settings.frames_channel;
+  const std::string& detections_channel = settings.detections_channel;
   // A missing or broken model is a configuration error: exit code 2 before any frame is read.
   std::optional<Detector> detector_storage;
   try {
-    detector_storage.emplace(config, bmp::Config::fromFile(dynamic_path));
+    detector_storage.emplace(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   } catch (const ModelError& e) {
     throw bmp::ConfigError(e.what());
   }
   Detector& detector = *detector_storage;
-  bmp::log::info("model ", detector.modelName(), " (", config.modelSpec().path, ") ready; mode ",
-                 toString(mode), ", ", frames_channel, " -> ", detections_channel);
+  bmp::log::info("model ", detector.modelName(), " (", settings.detector.modelSpec().path, ") ready; mode ",
+                 toString(settings.mode), ", ", frames_channel, " -> ", detections_channel);
 
   Wakeup wakeup;
-  DetectionWorker worker(detector, mode, static_cast<std::size_t>(capacity), [&wakeup] { wakeup.notify(); });
+  DetectionWorker worker(detector, settings.mode, static_cast<std::size_t>(settings.queue_capacity),
+                         [&wakeup] { wakeup.notify(); });
   ctx.lcm.subscribe<bmp::rgbd_frame_t>(
       frames_channel, [&](const bmp::rgbd_frame_t& msg, const bmp::ReceivedInfo&) {
         ctx.status.received();
