@@ -1,9 +1,9 @@
 // The detector against boxes labelled by hand on real images (labelled_boxes.txt).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
-#include <memory>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -47,22 +47,12 @@ std::vector<LabelledBox> readFixtures() {
   return out;
 }
 
-class DetectorImages : public ::testing::TestWithParam<int> {
- protected:
-  // One detector per size for the whole suite: loading is the slow part.
-  static Detector& detectorFor(int size) {
-    static std::map<int, std::unique_ptr<Detector>> detectors;
-    auto& d = detectors[size];
-    if (!d)
-      d = std::make_unique<Detector>(test::presetConfig("yolov5n-" + std::to_string(size)),
-                                     test::repoDynamicClasses());
-    return *d;
-  }
-};
+// Parameter: a model preset; a fixture applies when the preset's input size is in its "sizes" column.
+class DetectorImages : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DetectorImages, FindsEveryLabelledBoxWithClassAndLevel) {
-  const int size = GetParam();
-  Detector& detector = detectorFor(size);
+  Detector detector(test::presetConfig(GetParam()), test::repoDynamicClasses());
+  const int size = detector.config().input_size;
   const auto fixtures = readFixtures();
   ASSERT_GE(fixtures.size(), 20u);
   std::map<std::string, std::vector<Detection>> seen;  // one inference per image
@@ -100,20 +90,19 @@ TEST_P(DetectorImages, FindsEveryLabelledBoxWithClassAndLevel) {
   EXPECT_GE(checked, 20);
 }
 
-INSTANTIATE_TEST_SUITE_P(Sizes, DetectorImages, ::testing::Values(320, 640),
-                         [](const auto& info) { return "input" + std::to_string(info.param); });
+INSTANTIATE_TEST_SUITE_P(Models, DetectorImages,
+                         ::testing::Values("yolov5n-320", "yolov5n-640", "yolo-fastest-xl"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
-TEST(DetectorYoloFastest, FindsBothPeopleInABonnFrame) {
-  Detector detector(test::presetConfig("yolo-fastest-xl"), test::repoDynamicClasses());
-  EXPECT_EQ(detector.modelName(), "yolo-fastest-1.1-xl_320");
-  const cv::Mat bgr = cv::imread(test::bonnDir() + "/rgb/1548339829.89644.jpg");
-  const auto detections = detector.detect(bgr);
-  for (const cv::Rect2f label : {cv::Rect2f(272, 30, 140, 450), cv::Rect2f(460, 5, 180, 475)}) {
-    bool found = false;
-    for (const auto& d : detections)
-      found = found || (d.label == "person" && d.level == DynamicLevel::kHigh && iou(d.box, label) >= 0.5f);
-    EXPECT_TRUE(found) << "person at " << label;
-  }
+TEST(DetectorModelNames, NamesComeFromTheModelFiles) {
+  EXPECT_EQ(Detector(test::presetConfig("yolo-fastest-xl"), test::repoDynamicClasses()).modelName(),
+            "yolo-fastest-1.1-xl_320");
+  EXPECT_EQ(Detector(test::presetConfig("yolov5n-320"), test::repoDynamicClasses()).modelName(),
+            "yolov5n_coco_320");
 }
 
 }  // namespace
