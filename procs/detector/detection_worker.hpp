@@ -49,6 +49,8 @@ class DetectionWorker {
   std::size_t submit(FrameJob job);
   // Results finished since the last call, in processing order.
   std::vector<FrameResult> takeResults();
+  // Frames waiting for the worker (not counting the one in progress).
+  std::size_t pending() const { return slot_.size(); }
 
  private:
   void run();

@@ -10,6 +10,7 @@
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/log.hpp"
+#include "bmp/common/timing.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/process.hpp"
 #include "detector/detection_worker.hpp"
@@ -129,6 +130,7 @@ int run(bmp::ProcessContext& ctx) {
   ctx.status.tick(true);  // the first heartbeat also tells others we are subscribed
 
   const std::string model_name = detector.modelName();
+  bmp::TimingStats frame_times;
   while (!ctx.stop.requested()) {
     pollfd fds[2] = {{ctx.lcm.raw().getFileno(), POLLIN, 0}, {wakeup.fd(), POLLIN, 0}};
     if (poll(fds, 2, 200) > 0 && (fds[0].revents & POLLIN) && !ctx.lcm.handle(0)) {
@@ -147,10 +149,15 @@ int run(bmp::ProcessContext& ctx) {
       }
       ctx.lcm.publish(detections_channel, toMsg(result, model_name));
       ctx.status.processed();
+      frame_times.add(result.total_ms);
       ctx.status.published();
     }
     ctx.status.tick();
   }
+  bmp::log::info("processed ", ctx.status.processedCount(), " of ", ctx.status.receivedCount(),
+                 " frame(s), dropped ", ctx.status.droppedCount(), ", malformed ",
+                 ctx.status.malformedCount(), ", not yet processed at exit ", worker.pending(),
+                 "; per frame ", frame_times.empty() ? std::string("-") : frame_times.summary());
   return 0;
 }
 
