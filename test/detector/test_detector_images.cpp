@@ -81,7 +81,10 @@ TEST_P(DetectorImages, FindsEveryLabelledBoxWithClassAndLevel) {
       const float overlap = iou(d.box, f.box);
       if (overlap > best_iou) best_iou = overlap, best = &d;
     }
-    ASSERT_NE(best, nullptr) << "no " << f.label << " detected";
+    if (best == nullptr) {
+      ADD_FAILURE() << "no " << f.label << " detected";
+      continue;
+    }
     EXPECT_GE(best_iou, 0.5f) << "best " << f.label << " box IoU " << best_iou;
     const DynamicLevel expected = f.label == "person" ? DynamicLevel::kHigh : DynamicLevel::kLow;
     EXPECT_EQ(best->level, expected);
