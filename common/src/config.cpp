@@ -13,6 +13,7 @@ struct Config::State {
   std::string origin;
   YAML::Node root;
   std::set<std::string> used;          // full paths of keys read
+  std::set<std::string> ignored;       // full paths of subtrees accepted unread
   std::vector<std::string> effective;  // "path = value" in reading order
 };
 
@@ -68,14 +69,15 @@ T convert(const YAML::Node& node, const std::string& origin, const std::string& 
 }
 
 void collectUnused(const YAML::Node& node, const std::string& prefix, const std::set<std::string>& used,
-                   std::vector<std::string>& unknown) {
+                   const std::set<std::string>& ignored, std::vector<std::string>& unknown) {
   if (!node.IsMap()) return;
   for (const auto& kv : node) {
     const std::string path = prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar();
+    if (ignored.count(path)) continue;
     if (!used.count(path)) {
       unknown.push_back(path);
     } else if (kv.second.IsMap()) {
-      collectUnused(kv.second, path, used, unknown);
+      collectUnused(kv.second, path, used, ignored, unknown);
     }
   }
 }
@@ -158,9 +160,13 @@ std::vector<std::string> Config::keys() const {
   return out;
 }
 
+void Config::ignore(const std::string& key) const {
+  state_->ignored.insert(path(key));
+}
+
 void Config::finish() const {
   std::vector<std::string> unknown;
-  collectUnused(state_->root, "", state_->used, unknown);
+  collectUnused(state_->root, "", state_->used, state_->ignored, unknown);
   if (unknown.empty()) return;
   std::string message = state_->origin + ": unknown key";
   message += unknown.size() > 1 ? "s " : " ";

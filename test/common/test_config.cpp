@@ -7,7 +7,8 @@ namespace bmp {
 namespace {
 
 TEST(Config, ReadsTypedValuesAndNestedSections) {
-  const Config c = Config::fromString("a: 3\nb: 2.5\nname: x\nflag: true\nlist: [1, 2]\ns:\n  k: 7\n", "t.yaml");
+  const Config c =
+      Config::fromString("a: 3\nb: 2.5\nname: x\nflag: true\nlist: [1, 2]\ns:\n  k: 7\n", "t.yaml");
   EXPECT_EQ(c.get<int>("a", 0), 3);
   EXPECT_DOUBLE_EQ(c.get<double>("b", 0.0), 2.5);
   EXPECT_EQ(c.get<std::string>("name", ""), "x");
@@ -63,6 +64,21 @@ TEST(Config, MissingFileAndBadYamlNameTheFile) {
   EXPECT_THROW(Config::fromString("- 1\n- 2\n", "list.yaml"), ConfigError);
 }
 
+TEST(Config, IgnoredSubtreeIsAcceptedButTyposElsewhereAreNot) {
+  const Config c =
+      Config::fromString("model:\n  path: m.onnx\nprocess:\n  mode: every\n  queue: 3\nmodle: x\n", "d.yaml");
+  c.section("model").get<std::string>("path", "");
+  c.ignore("process");
+  try {
+    c.finish();
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'modle'"), std::string::npos) << what;
+    EXPECT_EQ(what.find("process"), std::string::npos) << what;
+  }
+}
+
 TEST(Config, RequiredKeyMissing) {
   const Config c = Config::fromString("a: 1\n", "f.yaml");
   EXPECT_THROW(c.require<double>("fx"), ConfigError);
@@ -80,8 +96,8 @@ TEST(Config, EffectiveValuesListDefaults) {
 
 // Every shipped configuration file must parse (a typo in config/ must fail here, not at a user's start-up).
 TEST(Config, ShippedFilesParse) {
-  for (const char* f : {"capture.yaml", "run.yaml", "cameras/bonn.yaml", "cameras/tum_fr1.yaml", "cameras/tum_fr2.yaml",
-                        "cameras/tum_fr3.yaml"}) {
+  for (const char* f : {"capture.yaml", "run.yaml", "cameras/bonn.yaml", "cameras/tum_fr1.yaml",
+                        "cameras/tum_fr2.yaml", "cameras/tum_fr3.yaml"}) {
     EXPECT_NO_THROW(Config::fromFile(test::sourceDir() + "/config/" + f)) << f;
   }
 }

@@ -31,6 +31,10 @@ DetectorConfig loadConfig(const bmp::ArgParser& args, std::string& dynamic_path)
   dynamic_path = config.get<std::string>("dynamic_classes", "dynamic_classes.yaml");
   if (!fs::path(dynamic_path).is_absolute())
     dynamic_path = (fs::path(path).parent_path() / dynamic_path).string();
+  // The process's own sections are not this tool's business; anything else unknown is a typo.
+  config.ignore("process");
+  config.ignore("channels");
+  config.finish();
   if (args.given("dynamic-classes")) dynamic_path = args.value("dynamic-classes");
   if (args.given("model")) c = withModelPreset(c, args.value("model"));
   if (args.given("conf")) c.conf_threshold = static_cast<float>(args.number("conf"));

@@ -38,6 +38,9 @@ class Config {
   // Keys of this mapping, in file order.
   std::vector<std::string> keys() const;
 
+  // Accepts the whole subtree under key without reading it: for a tool that shares a file with a process
+  // and does not use the process's sections. A misspelt key elsewhere is still an error.
+  void ignore(const std::string& key) const;
   // Throws ConfigError listing every key in the file that was never read.
   void finish() const;
   // "path.to.key = value" for every value read, with "(default)" where the fallback was used.
