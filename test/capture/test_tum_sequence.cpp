@@ -18,8 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // associate.py written out plainly (all pairs, sort, greedy): the reference for the fast version.
-std::vector<std::pair<double, double>> referenceAssociate(const std::vector<double>& a, const std::vector<double>& b,
-                                                          double max_diff) {
+std::vector<std::pair<double, double>> referenceAssociate(const std::vector<double>& a,
+                                                          const std::vector<double>& b, double max_diff) {
   std::vector<std::tuple<double, double, double>> pm;
   for (double x : a)
     for (double y : b)
@@ -153,8 +153,8 @@ TEST_F(DamagedFolder, CorruptMissingAndWrongSizeAreSkippedWithReasons) {
   // 1: corrupt PNG (a flipped bit), 2: missing depth file, 3: depth of the wrong size.
   std::vector<uint8_t> bytes = readFileBytes(depth_files_[1].string());
   bytes[bytes.size() / 2] ^= 0x10;
-  std::ofstream(depth_files_[1], std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                         static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(depth_files_[1], std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   fs::remove(depth_files_[2]);
   cv::imwrite(depth_files_[3].string(), cv::Mat(240, 320, CV_16UC1, cv::Scalar(1000)));
   SkipReport skips;
@@ -167,7 +167,8 @@ TEST_F(DamagedFolder, CorruptMissingAndWrongSizeAreSkippedWithReasons) {
   ASSERT_EQ(warnings.size(), 3u);
   const auto mentions = [&](const std::string& what, const fs::path& file) {
     for (const auto& w : warnings)
-      if (w.find(file.filename().string()) != std::string::npos && w.find(what) != std::string::npos) return true;
+      if (w.find(file.filename().string()) != std::string::npos && w.find(what) != std::string::npos)
+        return true;
     return false;
   };
   EXPECT_TRUE(mentions("CRC", depth_files_[1]));

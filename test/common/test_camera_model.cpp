@@ -43,7 +43,8 @@ TEST(CameraModel, DistortionMatchesOpenCvAndInverts) {
 
 TEST(CameraConfig, RejectsWrongDistortionLength) {
   const Config c = Config::fromString(
-      "camera: {width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, distortion: [0, 0], depth_scale: 5000}",
+      "camera: {width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, distortion: [0, 0], "
+      "depth_scale: 5000}",
       "cam.yaml");
   EXPECT_THROW(cameraFromConfig(c.section("camera")), ConfigError);
 }

@@ -12,7 +12,8 @@ TEST(ChildProcess, ExitCodeAndPipedOutput) {
   ChildProcess child({"/bin/sh", "-c", "echo hello; exit 3"}, ChildProcess::Output::kPipe);
   std::string out;
   char buf[256];
-  for (ssize_t n; (n = ::read(child.outputFd(), buf, sizeof(buf))) > 0;) out.append(buf, static_cast<size_t>(n));
+  for (ssize_t n; (n = ::read(child.outputFd(), buf, sizeof(buf))) > 0;)
+    out.append(buf, static_cast<size_t>(n));
   EXPECT_EQ(child.wait(5.0), 3);
   EXPECT_EQ(out, "hello\n");
 }

@@ -40,11 +40,13 @@ TEST(ImageProbe, DetectsCorruption) {
 }
 
 TEST(ImageCodec, DecodesRealFilesWithDeclaredFormat) {
-  EncodedImage depth{640, 480, ImageEncoding::kPng, PixelFormat::kMono16, readFileBytes(test::sharedPath(kDepth))};
+  EncodedImage depth{640, 480, ImageEncoding::kPng, PixelFormat::kMono16,
+                     readFileBytes(test::sharedPath(kDepth))};
   const cv::Mat d = decodeImage(depth);
   EXPECT_EQ(d.type(), CV_16UC1);
   EXPECT_GT(cv::countNonZero(d), 100000);
-  EncodedImage colour{640, 480, ImageEncoding::kJpeg, PixelFormat::kBgr8, readFileBytes(test::sharedPath(kColour))};
+  EncodedImage colour{640, 480, ImageEncoding::kJpeg, PixelFormat::kBgr8,
+                      readFileBytes(test::sharedPath(kColour))};
   EXPECT_EQ(decodeImage(colour).type(), CV_8UC3);
   // Declared size must match.
   colour.width = 320;

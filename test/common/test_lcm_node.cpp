@@ -17,7 +17,8 @@ TEST(LcmNode, TypedRoundTripOverMemq) {
   });
   slam_pose_t msg{};
   msg.seq = 17;
-  msg.T_world_cam = toMsg(makeSE3({1, 2, 3}, Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()))));
+  msg.T_world_cam =
+      toMsg(makeSE3({1, 2, 3}, Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()))));
   node.publish("POSE", msg);
   node.handle(100);
   ASSERT_EQ(got.size(), 1u);

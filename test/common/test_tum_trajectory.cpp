@@ -18,7 +18,9 @@ TEST(TumTrajectory, ReadsBonnGroundTruth) {
 TEST(TumTrajectory, WriteReadRoundTrip) {
   Trajectory t;
   for (int i = 0; i < 5; ++i)
-    t.push_back({1000.0 + i * 0.033333, makeSE3({0.1 * i, -0.2, 1.0 + i}, Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitY())))});
+    t.push_back({1000.0 + i * 0.033333,
+                 makeSE3({0.1 * i, -0.2, 1.0 + i},
+                         Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitY())))});
   const auto path = test::scratchDir("tum_traj") / "t.txt";
   writeTumTrajectory(path.string(), t);
   const Trajectory r = readTumTrajectory(path.string());
