@@ -7,6 +7,7 @@
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/timing.hpp"
+#include "bmp/common/tool_main.hpp"
 #include "detector/detection_worker.hpp"
 #include "detector/shared_paths.hpp"
 #include "image_list.hpp"
@@ -98,20 +99,5 @@ int main(int argc, char** argv) {
   args.addOption("threads", "N", "OpenCV threads instead of the configured number");
   args.addOption("config", "FILE", "detector configuration (thresholds, threads)",
                  configDir() + "/detector.yaml");
-  try {
-    if (!args.parse(argc, argv)) {
-      std::cout << args.help();
-      return 0;
-    }
-    return run(args);
-  } catch (const bmp::ArgError& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  } catch (const bmp::ConfigError& e) {
-    std::cerr << "bmp-bench-detector: configuration error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "bmp-bench-detector: " << e.what() << "\n";
-    return 1;
-  }
+  return bmp::runTool(args, argc, argv, run);
 }

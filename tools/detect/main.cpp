@@ -11,6 +11,7 @@
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/image_codec.hpp"
+#include "bmp/common/tool_main.hpp"
 #include "detector/detection_worker.hpp"
 #include "image_list.hpp"
 
@@ -112,23 +113,8 @@ int main(int argc, char** argv) {
   args.addOption("conf", "X", "confidence threshold instead of the configured one");
   args.addOption("threads", "N", "OpenCV threads instead of the configured number");
   args.addOption("limit", "N", "stop after N images");
-  try {
-    if (!args.parse(argc, argv)) {
-      std::cout << args.help();
-      return 0;
-    }
-    if (!args.given("input")) throw bmp::ArgError("--input is required (see --help)");
-  } catch (const bmp::ArgError& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  }
-  try {
-    return run(args);
-  } catch (const bmp::ConfigError& e) {
-    std::cerr << "bmp-detect: configuration error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "bmp-detect: " << e.what() << "\n";
-    return 1;
-  }
+  return bmp::runTool(args, argc, argv, [](const bmp::ArgParser& parsed) {
+    if (!parsed.given("input")) throw bmp::ArgError("bmp-detect: --input is required");
+    return run(parsed);
+  });
 }

@@ -11,6 +11,7 @@
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/log.hpp"
 #include "bmp/common/timing.hpp"
+#include "bmp/common/tool_main.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "bmp/lcm/process.hpp"
 #include "launcher/launch_plan.hpp"
@@ -165,20 +166,5 @@ int main(int argc, char** argv) {
   args.addEpilog(
       "Outputs in the run folder: trajectory.txt (TUM), groundtruth.txt, eval.json, plots/*.png,\n"
       "logs/<process>.log. Exit status is non-zero if any process failed.\n");
-  try {
-    if (!args.parse(argc, argv)) {
-      std::cout << args.help();
-      return 0;
-    }
-    return launch(args);
-  } catch (const ArgError& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  } catch (const ConfigError& e) {
-    log::error("bmp-run: ", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    log::error("bmp-run: ", e.what());
-    return 1;
-  }
+  return runTool(args, argc, argv, launch);
 }

@@ -8,6 +8,7 @@
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/log.hpp"
+#include "bmp/common/tool_main.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/lcm/frame_message.hpp"
@@ -21,8 +22,7 @@ using namespace bmp::capture;
 int convert(const ArgParser& args) {
   const std::string dir = args.value("dataset");
   const std::string out_path = args.value("out");
-  if (dir.empty() || out_path.empty())
-    throw ArgError("tum2lcm: --dataset and --out are required (see --help)");
+  if (dir.empty() || out_path.empty()) throw ArgError("tum2lcm: --dataset and --out are required");
   std::string camera_file = args.value("camera");
   if (camera_file.empty()) camera_file = cameraFileFor(dir, configDir() + "/cameras");
   if (camera_file.empty())
@@ -78,17 +78,5 @@ int main(int argc, char** argv) {
   args.addEpilog(
       "Example:\n  tum2lcm --dataset ../shared/data/rgbd_bonn_crowd --out bonn.lcmlog\n"
       "  lcm-logplayer bonn.lcmlog      # replays RGBD_FRAME into running processes\n");
-  try {
-    if (!args.parse(argc, argv)) {
-      std::cout << args.help();
-      return 0;
-    }
-    return convert(args);
-  } catch (const ArgError& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    log::error("tum2lcm: ", e.what());
-    return 1;
-  }
+  return runTool(args, argc, argv, convert);
 }

@@ -1,0 +1,28 @@
+#include "bmp/common/tool_main.hpp"
+
+#include <iostream>
+
+#include "bmp/common/config.hpp"
+
+namespace bmp {
+
+int runTool(ArgParser& args, int argc, char** argv, const std::function<int(const ArgParser&)>& body) {
+  try {
+    if (!args.parse(argc, argv)) {
+      std::cout << args.help();
+      return 0;
+    }
+    return body(args);
+  } catch (const ArgError& e) {
+    std::cerr << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const ConfigError& e) {
+    std::cerr << args.program() << ": configuration error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << args.program() << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace bmp
