@@ -1,6 +1,7 @@
 #include "tracker/frame_pose.hpp"
 
 #include "tracker/map_point.hpp"
+#include "tracker/pose_consensus.hpp"
 #include "tracker/pose_optimizer.hpp"
 
 namespace bmp::tracker {
@@ -21,11 +22,16 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
     o.u_right = f.uRight(g, i);
     o.information = g.pyramid.inv_sigma2[f.level(i)];
     o.weight = f.weight[i];
+    // Points seen by few keyframes are the least proven: new structure, or something that moves.
+    if (static_cast<int>(mp->observations.size()) < options.mature_observations)
+      o.weight *= options.young_point_weight;
     obs.push_back(o);
     index.push_back(i);
   }
   if (obs.size() < 3) return 0;
   SE3 T_cam_world = frame.T_cam_world();
+  const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
+  T_cam_world = findConsensusPose(T_cam_world, obs, camera, options).T_cam_world;
   const int inliers = optimizePose(T_cam_world, obs, {g.fx, g.fy, g.cx, g.cy, g.bf}, options);
   frame.setPose(T_cam_world.inverse());
   for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;

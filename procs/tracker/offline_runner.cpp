@@ -20,6 +20,7 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     input.seq = seq++;
     input.image = frame->image;
     input.depth = frame->depth;
+    input.exclusion_mask = frame->exclusion_mask;
     TrackResult r = tracker.track(input);
     out.track_ms.add(r.processing_ms);
     out.frames_lost += r.state == TrackingState::kLost;
@@ -34,11 +35,11 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
   return out;
 }
 
-FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth) {
+FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth, bool use_masks) {
   auto index = std::make_shared<capture::SequenceIndex>(capture::indexSequence(dir));
   if (groundtruth) *groundtruth = index->groundtruth;
   auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
-  return [index, position]() -> std::optional<OfflineFrame> {
+  return [index, position, use_masks]() -> std::optional<OfflineFrame> {
     while (*position < index->frames.size()) {
       const auto& pair = index->frames[(*position)++];
       if (!std::filesystem::exists(pair.rgb_path) || !std::filesystem::exists(pair.depth_path)) continue;
@@ -47,6 +48,11 @@ FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* gro
       f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
       f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
       if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1) continue;
+      if (use_masks) {
+        const auto mask =
+            std::filesystem::path(index->dir) / "mask" / std::filesystem::path(pair.rgb_path).filename();
+        f.exclusion_mask = cv::imread(mask.string(), cv::IMREAD_GRAYSCALE);
+      }
       return f;
     }
     return std::nullopt;

@@ -16,8 +16,9 @@ namespace bmp::tracker {
 
 struct OfflineFrame {
   double stamp = 0.0;
-  cv::Mat image;  // BGR or gray
-  cv::Mat depth;  // CV_16UC1 or CV_32FC1 metres
+  cv::Mat image;           // BGR or gray
+  cv::Mat depth;           // CV_16UC1 or CV_32FC1 metres
+  cv::Mat exclusion_mask;  // optional CV_8UC1: keypoints on nonzero pixels take no part
 };
 // Returns the next frame, or nullopt at the end.
 using FrameProvider = std::function<std::optional<OfflineFrame>()>;
@@ -42,6 +43,9 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
 // Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), starting
 // at `start`; pairs whose files are missing or unreadable are skipped. groundtruth receives the folder's
 // ground truth when not null.
-FrameProvider tumFolderFrames(const std::string& dir, int start = 0, Trajectory* groundtruth = nullptr);
+// With use_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) becomes the exclusion mask: an oracle
+// for the dynamic-object stage.
+FrameProvider tumFolderFrames(const std::string& dir, int start = 0, Trajectory* groundtruth = nullptr,
+                              bool use_masks = false);
 
 }  // namespace bmp::tracker

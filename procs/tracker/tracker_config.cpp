@@ -68,6 +68,12 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(p, "iterations_per_round", cfg.pose.iterations_per_round);
   read(p, "chi2_mono", cfg.pose.chi2_mono);
   read(p, "chi2_rgbd", cfg.pose.chi2_rgbd);
+  read(p, "consensus_iterations", cfg.pose.consensus_iterations);
+  read(p, "consensus_chi2_factor", cfg.pose.consensus_chi2_factor);
+  read(p, "mature_observations", cfg.pose.mature_observations);
+  read(p, "young_point_weight", cfg.pose.young_point_weight);
+  check(cfg.pose.young_point_weight > 0.0 && cfg.pose.young_point_weight <= 1.0, p, "young_point_weight",
+        "must be in (0, 1]");
   check(cfg.pose.rounds >= 1, p, "rounds", "must be at least 1");
 
   const Config k = section.section("keyframes");

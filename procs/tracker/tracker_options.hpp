@@ -39,8 +39,12 @@ struct TrackingOptions {
 struct PoseOptimizerOptions {
   int rounds = 4;  // optimisation rounds with outlier re-classification
   int iterations_per_round = 10;
-  double chi2_mono = 5.991;  // 95 % chi-square, 2 dof
-  double chi2_rgbd = 7.815;  // 95 % chi-square, 3 dof
+  double chi2_mono = 5.991;            // 95 % chi-square, 2 dof
+  double chi2_rgbd = 7.815;            // 95 % chi-square, 3 dof
+  int consensus_iterations = 60;       // 3-point hypotheses tried against the prediction (0: off)
+  double consensus_chi2_factor = 1.0;  // inlier test while scoring hypotheses, times chi2
+  int mature_observations = 3;         // keyframes that must see a point before it counts fully
+  double young_point_weight = 0.05;    // cost weight of a point seen by fewer (temporary points: 0 keyframes)
 };
 
 struct KeyframeOptions {

@@ -34,13 +34,15 @@ int run(const bmp::ArgParser& args) {
   const bool verbose = args.flag("verbose");
   options.on_result = [verbose](const TrackResult& r) {
     if (verbose || r.seq % 100 == 0)
-      std::fprintf(stderr, "frame %5lld %-12s kp %4d tracked %4d map %6d kfs %4d  %.1f ms\n",
-                   static_cast<long long>(r.seq), toString(r.state), r.num_keypoints, r.num_tracked,
-                   r.num_map_points, r.num_keyframes, r.processing_ms);
+      std::fprintf(stderr, "frame %5lld %-12s kp %4d excluded %4d tracked %4d map %6d kfs %4d  %.1f ms\n",
+                   static_cast<long long>(r.seq), toString(r.state), r.num_keypoints, r.num_excluded,
+                   r.num_tracked, r.num_map_points, r.num_keyframes, r.processing_ms);
   };
-  const OfflineResult result = runOffline(
-      tracker, tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth),
-      options);
+  const OfflineResult result =
+      runOffline(tracker,
+                 tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth,
+                                 args.flag("oracle-masks")),
+                 options);
 
   if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
   if (args.given("keyframe-trajectory"))
@@ -96,6 +98,7 @@ int main(int argc, char** argv) {
   args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
   args.addOption("errors", "FILE", "write each frame's position error after alignment (stamp metres)");
   args.addFlag("inline-mapping", "run local mapping inline instead of in its thread (deterministic)");
+  args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("verbose", "print every frame's state, not every 100th");
   try {
     if (!args.parse(argc, argv)) {
