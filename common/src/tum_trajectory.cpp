@@ -8,6 +8,14 @@
 
 namespace bmp {
 
+bool normalizeTumLine(std::string& line) {
+  std::replace(line.begin(), line.end(), ',', ' ');
+  std::replace(line.begin(), line.end(), '\t', ' ');
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const auto first = line.find_first_not_of(' ');
+  return first != std::string::npos && line[first] != '#';
+}
+
 Trajectory parseTumTrajectory(const std::string& text, const std::string& origin) {
   Trajectory out;
   std::istringstream in(text);
@@ -15,10 +23,7 @@ Trajectory parseTumTrajectory(const std::string& text, const std::string& origin
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::replace(line.begin(), line.end(), '\t', ' ');
-    const auto first = line.find_first_not_of(" \r");
-    if (first == std::string::npos || line[first] == '#') continue;
+    if (!normalizeTumLine(line)) continue;
     std::istringstream fields(line);
     double v[8];
     int n = 0;

@@ -19,11 +19,7 @@ std::vector<ListEntry> readListFile(const std::string& path) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::replace(line.begin(), line.end(), '\t', ' ');
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const auto first = line.find_first_not_of(' ');
-    if (first == std::string::npos || line[first] == '#') continue;
+    if (!normalizeTumLine(line)) continue;
     std::istringstream fields(line);
     ListEntry entry;
     std::string stamp_text, extra;
