@@ -124,6 +124,25 @@ TEST(Launcher, SyntheticDefaultPlaysWithGroundTruth) {
   EXPECT_EQ(readTumTrajectory((out / "groundtruth.txt").string()).size(), 30u);
 }
 
+// The shipped run configuration: capture, detector and tracker over LCM, then the evaluation.
+TEST(Launcher, FullPipelineOnBonnTracksAndEvaluates) {
+  const fs::path out = test::scratchDir("launcher_pipeline") / "run";
+  const Outcome o = runCommand("launcher_pipeline",
+                               {binPath("bmp-run"), "--dataset", test::bonnDir(), "--frames", "90", "--out",
+                                out.string(), "--lcm-url", test::uniqueLcmUrl(8)},
+                               240);
+  ASSERT_EQ(o.status, 0) << o.output;
+  const Trajectory trajectory = readTumTrajectory((out / "trajectory.txt").string());
+  EXPECT_EQ(trajectory.size(), 90u);  // lockstep: a pose for every frame
+  EXPECT_FALSE(readTumTrajectory((out / "keyframes.txt").string()).empty());
+  const std::string eval = test::readText((out / "eval.json").string());
+  EXPECT_NE(eval.find("\"ate\""), std::string::npos) << eval;
+  EXPECT_TRUE(fs::exists(out / "plots"));
+  // The detector answered every frame (lockstep runs it in 'every' mode).
+  const std::string detector_log = test::readText((out / "logs" / "bmp-detector.log").string());
+  EXPECT_NE(detector_log.find("processed 90"), std::string::npos) << detector_log;
+}
+
 TEST(Launcher, FailingProcessFailsTheRun) {
   const fs::path dir = test::scratchDir("launcher_fail");
   const fs::path config = writeRunConfig(dir, "[--no-such-option]");
