@@ -25,9 +25,10 @@ int benchmark(const bmp::capture::SyntheticScene& scene, int frames) {
     scene.render(i % scene.numFrames());
     stats.add(watch.elapsedMs());
   }
-  std::printf("render %dx%d: median %.2f ms, p95 %.2f ms over %d frames (median x%.2f of the %.0f ms budget)\n",
-              scene.camera().width, scene.camera().height, stats.median(), stats.p95(), frames,
-              stats.median() / kBudgetMs, kBudgetMs);
+  std::printf(
+      "render %dx%d: median %.2f ms, p95 %.2f ms over %d frames (median x%.2f of the %.0f ms budget)\n",
+      scene.camera().width, scene.camera().height, stats.median(), stats.p95(), frames,
+      stats.median() / kBudgetMs, kBudgetMs);
   return 0;
 }
 
