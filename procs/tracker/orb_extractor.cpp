@@ -145,21 +145,21 @@ float OrbExtractor::orientation(const cv::Mat& image, const cv::Point2f& pt) con
 }
 
 void OrbExtractor::describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint8_t* out) const {
-  const double a = kp.angle * M_PI / 180.0;
-  const double c = std::cos(a), s = std::sin(a);
+  const float a = kp.angle * static_cast<float>(M_PI / 180.0);
+  const float c = std::cos(a), s = std::sin(a);
   const int step = static_cast<int>(blurred.step1());
   const uint8_t* center = blurred.ptr<uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
-  auto value = [&](const cv::Point2f& p) {
-    const int x = static_cast<int>(std::lround(p.x * c - p.y * s));
-    const int y = static_cast<int>(std::lround(p.x * s + p.y * c));
-    return center[y * step + x];
-  };
+  // Rotated pattern as pixel offsets first: cvRound is a single SSE instruction.
+  int offset[512];
+  for (int k = 0; k < 512; ++k) {
+    const cv::Point2f& p = pattern_[k];
+    offset[k] = cvRound(p.x * s + p.y * c) * step + cvRound(p.x * c - p.y * s);
+  }
   for (int byte = 0; byte < kDescriptorBytes; ++byte) {
     uint8_t bits = 0;
-    for (int bit = 0; bit < 8; ++bit) {
-      const int k = 2 * (byte * 8 + bit);
-      if (value(pattern_[k]) < value(pattern_[k + 1])) bits |= static_cast<uint8_t>(1u << bit);
-    }
+    const int* o = offset + 16 * byte;
+    for (int bit = 0; bit < 8; ++bit)
+      bits |= static_cast<uint8_t>((center[o[2 * bit]] < center[o[2 * bit + 1]]) << bit);
     out[byte] = bits;
   }
 }

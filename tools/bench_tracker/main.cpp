@@ -55,6 +55,9 @@ int run(const bmp::ArgParser& args) {
   std::printf("track ms median  %.2f\n", result.track_ms.median());
   std::printf("track ms p95     %.2f\n", result.track_ms.p95());
   std::printf("track ms mean    %.2f\n", result.track_ms.mean());
+  bmp::TimingStats extract;
+  for (const auto& r : result.results) extract.add(r.extract_ms);
+  std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", extract.median());
   if (!groundtruth.empty() && result.trajectory.size() >= 3) {
     const AteResult ate = computeAte(result.trajectory, groundtruth);
     std::printf("ATE rmse m       %.4f\n", ate.rmse);
