@@ -15,7 +15,7 @@ CameraIntrinsics bonnCamera() {
   return cameraFromConfig(file.section("camera"));
 }
 
-TEST(BonnSequence, First150FramesTrackWithSmallError) {
+TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   TrackerConfig config;
   config.mapping.threaded = false;  // deterministic
   Tracker tracker(bonnCamera(), config);
@@ -36,7 +36,7 @@ TEST(BonnSequence, First150FramesTrackWithSmallError) {
 }
 
 // The whole sequence, people walking close to the camera throughout, with no dynamic handling.
-TEST(BonnSequence, WholeSequenceNoWorseThanOrbSlam2) {
+TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
   TrackerConfig config;
   config.mapping.threaded = false;
   Tracker tracker(bonnCamera(), config);

@@ -11,7 +11,7 @@ double poseError(const SE3& a, const SE3& b) {
   return (a.inverse().translation() - b.inverse().translation()).norm();
 }
 
-TEST(LocalBa, ReducesTheErrorOfPerturbedKeyframes) {
+TEST(TrackerLocalBa, ReducesTheErrorOfPerturbedKeyframes) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> ux(-2.0, 2.0), uz(2.0, 5.0);
   std::normal_distribution<double> noise(0.0, 0.5), shift(0.0, 0.03), turn(0.0, 0.01), blur(0.0, 0.03);

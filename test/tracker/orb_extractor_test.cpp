@@ -15,7 +15,7 @@ cv::Mat texturedImage(int seed) {
   return img;
 }
 
-TEST(OrbExtractor, ExtractsAboutTheRequestedNumberSpreadOverTheImage) {
+TEST(TrackerOrbExtractor, ExtractsAboutTheRequestedNumberSpreadOverTheImage) {
   OrbOptions options;
   const OrbExtractor extractor(options);
   const OrbFeatures f = extractor.extract(texturedImage(1));
@@ -52,7 +52,7 @@ cv::Mat shapesImage(int seed) {
   return img;
 }
 
-TEST(OrbExtractor, DescriptorsMatchUnderRotation) {
+TEST(TrackerOrbExtractor, DescriptorsMatchUnderRotation) {
   const OrbExtractor extractor(OrbOptions{});
   const cv::Mat img = shapesImage(2);
   cv::Mat rotated;

@@ -7,7 +7,7 @@
 namespace bmp::tracker {
 namespace {
 
-TEST(PoseOptimizer, RecoversKnownPoseFromNoisyCorrespondencesWithOutliers) {
+TEST(TrackerPoseOptimizer, RecoversKnownPoseFromNoisyCorrespondencesWithOutliers) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> ux(-2.0, 2.0), uz(1.0, 5.0), upx(0.0, 640.0), upy(0.0, 480.0);
   std::normal_distribution<double> pixel_noise(0.0, 0.7);
@@ -54,7 +54,7 @@ TEST(PoseOptimizer, RecoversKnownPoseFromNoisyCorrespondencesWithOutliers) {
   EXPECT_EQ(inliers, 400 - caught - false_alarms);
 }
 
-TEST(PoseOptimizer, WeightZeroObservationsTakeNoPart) {
+TEST(TrackerPoseOptimizer, WeightZeroObservationsTakeNoPart) {
   const PoseCamera cam{500.0, 500.0, 320.0, 240.0, 40.0};
   std::vector<PoseObservation> obs;
   for (int i = 0; i < 50; ++i) {

@@ -28,7 +28,7 @@ FrameProvider sceneFrames(std::shared_ptr<const capture::SyntheticScene> scene) 
   };
 }
 
-TEST(SyntheticSequence, StaticSceneAteBelow5mm) {
+TEST(TrackerSynthetic, StaticSceneAteBelow5mm) {
   auto scene = std::make_shared<const capture::SyntheticScene>(staticScene(240));
   TrackerConfig config;
   config.mapping.threaded = false;  // deterministic
@@ -54,7 +54,7 @@ TrackerInput inputOf(const capture::SyntheticFrame& f, int64_t seq) {
 
 // Track 90 frames, cover the camera for 5 (black, no depth: lost), withhold 30, then resume: the tracker
 // must relocalise against its keyframes, continue OK, and place the camera where the ground truth says.
-TEST(SyntheticSequence, RelocalisesAfterFramesAreWithheld) {
+TEST(TrackerSynthetic, RelocalisesAfterFramesAreWithheld) {
   auto scene = std::make_shared<const capture::SyntheticScene>(staticScene(170));
   TrackerConfig config;
   config.mapping.threaded = false;
