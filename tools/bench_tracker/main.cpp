@@ -23,6 +23,9 @@ int run(const bmp::ArgParser& args) {
   if (args.given("config")) {
     const bmp::Config file = bmp::Config::fromFile(args.value("config"));
     config = trackerConfigFromConfig(file.section("tracker"));
+    // The file's `process` section configures bmp-tracker's LCM side, which the benchmark does not have.
+    const bmp::Config process = file.section("process");
+    for (const auto& key : process.keys()) process.get<std::string>(key, "");
     file.finish();
   }
   if (args.flag("inline-mapping")) config.mapping.threaded = false;
