@@ -53,13 +53,21 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
   if (kf->bad) return;
   integrateKeyFrame(kf.get());
   cullRecentPoints(kf.get());
-  triangulate(kf.get());
-  fuseWithNeighbours(kf.get());
+  // Between steps the lock is let go, so a frame being tracked waits for one step, not the whole keyframe.
+  yieldLock(lock);
+  triangulate(kf.get(), lock);
+  yieldLock(lock);
+  fuseWithNeighbours(kf.get(), lock);
   map_.updateConnections(kf.get(), config_.mapping.covisibility_min_weight);
   // Do not let a backlog wait behind BA: the next keyframe's links matter more to tracking.
   if (queue_.size() == 0) bundleAdjust(kf, lock);
+  yieldLock(lock);
   cullKeyFrames(kf.get());
   timing_.add(watch.elapsedMs());
+}
+
+void LocalMapper::yieldLock(std::unique_lock<std::mutex>& lock) {
+  map_.yieldToTracking(lock);
 }
 
 void LocalMapper::integrateKeyFrame(KeyFrame* kf) {
@@ -105,7 +113,7 @@ void LocalMapper::cullRecentPoints(const KeyFrame* kf) {
   recent_points_.swap(keep);
 }
 
-void LocalMapper::fuseWithNeighbours(KeyFrame* kf) {
+void LocalMapper::fuseWithNeighbours(KeyFrame* kf, std::unique_lock<std::mutex>& lock) {
   const FrameGeometry& g = *geometry_;
   const double chi2 = config_.pose.chi2_rgbd;
   std::vector<KeyFrame*> targets;
@@ -117,7 +125,10 @@ void LocalMapper::fuseWithNeighbours(KeyFrame* kf) {
       if (!nb2->bad && seen.insert(nb2).second) targets.push_back(nb2);
   }
   // This keyframe's points into its neighbours ...
+  // Only this thread culls keyframes or erases points, so the raw pointers survive the yields.
   for (KeyFrame* target : targets) {
+    yieldLock(lock);
+    if (target->bad) continue;
     std::vector<std::shared_ptr<MapPoint>> mine;
     for (const auto& mp : kf->points)
       if (mp && !mp->bad) mine.push_back(mp);

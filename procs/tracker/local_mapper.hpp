@@ -49,8 +49,9 @@ class LocalMapper {
   void process(const std::shared_ptr<KeyFrame>& kf);
   void integrateKeyFrame(KeyFrame* kf);
   void cullRecentPoints(const KeyFrame* kf);
-  int triangulate(KeyFrame* kf);
-  void fuseWithNeighbours(KeyFrame* kf);
+  int triangulate(KeyFrame* kf, std::unique_lock<std::mutex>& lock);
+  void yieldLock(std::unique_lock<std::mutex>& lock);
+  void fuseWithNeighbours(KeyFrame* kf, std::unique_lock<std::mutex>& lock);
   void bundleAdjust(const std::shared_ptr<KeyFrame>& kf, std::unique_lock<std::mutex>& lock);
   void cullKeyFrames(KeyFrame* kf);
 

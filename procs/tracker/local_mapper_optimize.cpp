@@ -85,13 +85,19 @@ void LocalMapper::bundleAdjust(const std::shared_ptr<KeyFrame>& kf, std::unique_
   updates_.insert(updates_.end(), moved.begin(), moved.end());
 }
 
-int LocalMapper::triangulate(KeyFrame* kf) {
+int LocalMapper::triangulate(KeyFrame* kf, std::unique_lock<std::mutex>& lock) {
   const FrameGeometry& g = *geometry_;
   const auto& th = config_.pose;
   int created = 0;
   const Eigen::Vector3d c1 = kf->center();
-  for (KeyFrame* nb : kf->bestCovisibles(config_.mapping.triangulation_neighbors)) {
-    if (nb->bad) continue;
+  const auto neighbours = kf->bestCovisibles(config_.mapping.triangulation_neighbors);
+  std::vector<std::shared_ptr<KeyFrame>> held;  // alive while the lock is let go between neighbours
+  for (KeyFrame* nb : neighbours) held.push_back(map_.keyFrame(nb));
+  for (const auto& nb_shared : held) {
+    if (!nb_shared) continue;
+    yieldLock(lock);
+    KeyFrame* nb = nb_shared.get();
+    if (nb->bad || kf->bad) continue;
     if ((nb->center() - c1).norm() < config_.tracking.virtual_baseline_m) continue;
     const auto pairs = matchForTriangulation(*kf, *nb, g, config_.tracking.match_threshold_low, 0.6);
     const Features& f1 = *kf->features;

@@ -1,8 +1,23 @@
 #include "tracker/map.hpp"
 
 #include <algorithm>
+#include <thread>
 
 namespace bmp::tracker {
+
+std::unique_lock<std::mutex> Map::lockForTracking() {
+  tracking_waiting_.fetch_add(1);
+  std::unique_lock<std::mutex> lock(mutex_);
+  tracking_waiting_.fetch_sub(1);
+  return lock;
+}
+
+void Map::yieldToTracking(std::unique_lock<std::mutex>& lock) {
+  if (tracking_waiting_.load() == 0) return;
+  lock.unlock();
+  while (tracking_waiting_.load() > 0) std::this_thread::yield();
+  lock.lock();
+}
 
 void Map::addKeyFrame(const std::shared_ptr<KeyFrame>& kf) {
   keyframes_[kf->id] = kf;

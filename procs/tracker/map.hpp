@@ -2,6 +2,7 @@
 // The map: keyframes and map points, the covisibility graph, and the ids. One mutex guards all of it:
 // the tracker holds it from matching to the keyframe decision, local mapping holds it while it edits the
 // map; neither holds it during feature extraction or a Ceres solve. Methods assume the caller holds it.
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -17,6 +18,11 @@ namespace bmp::tracker {
 class Map {
  public:
   std::mutex& mutex() { return mutex_; }
+  // Tracking has priority: it announces that it waits, and local mapping, at its yield points, lets go of the
+  // lock until tracking has taken it (std::mutex is not fair: a plain unlock/lock would win it straight
+  // back).
+  std::unique_lock<std::mutex> lockForTracking();
+  void yieldToTracking(std::unique_lock<std::mutex>& lock);
 
   int64_t newKeyFrameId() { return next_keyframe_id_++; }
   int64_t newPointId() { return next_point_id_++; }
@@ -45,6 +51,7 @@ class Map {
 
  private:
   std::mutex mutex_;
+  std::atomic<int> tracking_waiting_{0};
   int64_t next_keyframe_id_ = 0;
   int64_t next_point_id_ = 0;
   std::map<int64_t, std::shared_ptr<KeyFrame>> keyframes_;

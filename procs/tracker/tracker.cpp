@@ -41,7 +41,9 @@ TrackResult Tracker::track(const TrackerInput& input) {
   TrackResult result;
   Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
   {
-    std::lock_guard<std::mutex> lock(map_.mutex());
+    Stopwatch wait;
+    const auto lock = map_.lockForTracking();
+    result.lock_wait_ms = wait.elapsedMs();
     result.keyframe_updates = mapper_->takePoseUpdates();
     bool tracked = false;
     if (state_ == TrackingState::kInitialising) {

@@ -45,6 +45,7 @@ struct TrackResult {
   std::optional<KeyFramePose> new_keyframe;    // made from this frame
   std::vector<KeyFramePose> keyframe_updates;  // poses moved by local BA since the previous frame
   double extract_ms = 0.0;                     // ORB extraction
+  double lock_wait_ms = 0.0;                   // waiting for local mapping to let go of the map
   double processing_ms = 0.0;                  // the whole call
   bool ok() const { return state == TrackingState::kOk || state == TrackingState::kRelocalised; }
 };

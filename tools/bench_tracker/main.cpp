@@ -58,8 +58,12 @@ int run(const bmp::ArgParser& args) {
   std::printf("track ms median  %.2f\n", result.track_ms.median());
   std::printf("track ms p95     %.2f\n", result.track_ms.p95());
   std::printf("track ms mean    %.2f\n", result.track_ms.mean());
-  bmp::TimingStats extract;
-  for (const auto& r : result.results) extract.add(r.extract_ms);
+  bmp::TimingStats extract, wait;
+  for (const auto& r : result.results) {
+    extract.add(r.extract_ms);
+    wait.add(r.lock_wait_ms);
+  }
+  std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", wait.median(), wait.p95());
   std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", extract.median());
   if (!groundtruth.empty() && result.trajectory.size() >= 3) {
     const AteResult ate = computeAte(result.trajectory, groundtruth);
