@@ -55,6 +55,8 @@ BaSummary solveLocalBa(BaProblem& ba, const PoseCamera& camera, const MappingOpt
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  // Eigen's sparse Cholesky: no OpenMP threads of CHOLMOD competing with tracking on a small machine.
+  solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;
 
