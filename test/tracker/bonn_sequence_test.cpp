@@ -30,7 +30,7 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   EXPECT_GE(result.trajectory.size(), 148u);
   EXPECT_GE(result.keyframe_trajectory.size(), 2u);
   const AteResult ate = computeAte(result.trajectory, groundtruth);
-  // Measured 1.0 cm on this stretch; 3 cm leaves room for platform differences while still failing on any
+  // Measured 1.2 cm on this stretch; 3 cm leaves room for platform differences while still failing on any
   // real regression (losing the static world to a passing person costs tens of centimetres).
   EXPECT_LT(ate.rmse, 0.03) << "ATE RMSE " << ate.rmse;
 }
