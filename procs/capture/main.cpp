@@ -34,6 +34,9 @@ void addOptions(ArgParser& args) {
   args.addOption("end", "N", "one past the last frame to play; -1 = all", "-1");
   args.addOption("every", "K", "play every K-th frame", "1");
   args.addOption("verify", "HOW", "header | decode: how images are checked before publishing");
+  args.addOption("ack-channels", "LIST",
+                 "lockstep: comma-separated channels that must all answer a frame "
+                 "before the next (default: capture.ack_channels)");
   args.addOption("groundtruth-out", "FILE", "write the ground truth of the played sequence (TUM format)");
   args.addOption("masks-out", "DIR", "synthetic scene: write the dynamic-object masks as PNG");
   args.addOption("wait-for", "NAMES",
@@ -52,20 +55,21 @@ std::string overridden(const ArgParser& args, const std::string& option, const s
 }
 
 void waitForProcesses(ProcessContext& ctx, const std::string& names, double timeout_s) {
-  std::set<std::string> pending;
+  // Shared with the handler: the subscription outlives this function (LCM keeps it to the end).
+  const auto pending = std::make_shared<std::set<std::string>>();
   std::stringstream list(names);
   for (std::string name; std::getline(list, name, ',');)
-    if (!name.empty()) pending.insert(name);
-  if (pending.empty()) return;
+    if (!name.empty()) pending->insert(name);
+  if (pending->empty()) return;
   ctx.lcm.subscribe<process_status_t>(
       "PROCESS_STATUS",
-      [&pending](const process_status_t& msg, const ReceivedInfo&) { pending.erase(msg.name); });
+      [pending](const process_status_t& msg, const ReceivedInfo&) { pending->erase(msg.name); });
   log::info("waiting for heartbeats of ", names);
   const Stopwatch watch;
-  while (!pending.empty() && !ctx.stop.requested()) {
+  while (!pending->empty() && !ctx.stop.requested()) {
     if (watch.elapsedMs() > timeout_s * 1000.0) {
       std::string missing;
-      for (const auto& n : pending) missing += (missing.empty() ? "" : ", ") + n;
+      for (const auto& n : *pending) missing += (missing.empty() ? "" : ", ") + n;
       throw std::runtime_error("no heartbeat from " + missing + " within " + std::to_string(timeout_s) +
                                " s");
     }
@@ -118,7 +122,14 @@ int run(ProcessContext& ctx) {
   const Config cfg = ctx.config.section("capture");
   PlayerOptions options;
   options.channel = cfg.get<std::string>("channel", options.channel);
-  options.ack_channel = cfg.get<std::string>("ack_channel", options.ack_channel);
+  const auto ack_channels = cfg.get<std::vector<std::string>>("ack_channels", options.ack_channels);
+  options.ack_channels = ack_channels;
+  if (ctx.args.given("ack-channels")) {
+    options.ack_channels.clear();
+    std::stringstream list(ctx.args.value("ack-channels"));
+    for (std::string name; std::getline(list, name, ',');)
+      if (!name.empty()) options.ack_channels.push_back(name);
+  }
   options.mode = parseRateMode(overridden(ctx.args, "mode", cfg.get<std::string>("mode", "realtime")));
   const double speed = cfg.get<double>("speed", options.speed);
   options.speed = ctx.args.given("speed") ? ctx.args.number("speed") : speed;

@@ -25,12 +25,17 @@ bool LcmNode::handle(int timeout_ms) {
   return lcm_.handleTimeout(timeout_ms) >= 0;
 }
 
-void LcmNode::reportMalformed(const std::string& channel, uint32_t size, const char* type, bool undecodable) {
+void LcmNode::subscribeRaw(const std::string& channel, RawHandler handler) {
+  auto sub = std::make_unique<RawSubscriber>(std::move(handler));
+  lcm::Subscription* s = lcm_.subscribe(channel, &RawSubscriber::onMessage, sub.get());
+  s->setQueueCapacity(queue_capacity_);
+  subscribers_.push_back(std::move(sub));
+}
+
+void LcmNode::reportMalformed(const std::string& channel, uint32_t size, const std::string& expected) {
   ++malformed_;
-  warn_("malformed message on channel " + channel + " (" + std::to_string(size) + " bytes): " +
-        (undecodable ? "does not decode as " + std::string(type) + " (wrong type or truncated)"
-                     : "trailing bytes after a " + std::string(type)) +
-        "; skipped (" + std::to_string(malformed_) + " so far)");
+  warn_("malformed message on channel " + channel + " (" + std::to_string(size) + " bytes): not a " +
+        expected + "; skipped (" + std::to_string(malformed_) + " so far)");
 }
 
 }  // namespace bmp

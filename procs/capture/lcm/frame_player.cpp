@@ -5,6 +5,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <bmp/detections_t.hpp>
 #include <bmp/slam_pose_t.hpp>
 
 #include "bmp/common/log.hpp"
@@ -16,16 +17,42 @@ namespace bmp::capture {
 FramePlayer::FramePlayer(LcmNode& lcm, StopSignal& stop, StatusReporter& status, PlayerOptions options)
     : lcm_(lcm), stop_(stop), status_(status), options_(std::move(options)) {
   if (options_.mode == RateMode::kLockstep) {
-    lcm_.subscribe<slam_pose_t>(options_.ack_channel, [this](const slam_pose_t& msg, const ReceivedInfo&) {
-      last_acked_seq_ = std::max(last_acked_seq_, msg.seq);
-    });
+    for (const auto& channel : options_.ack_channels) {
+      last_answered_seq_[channel] = -1;
+      lcm_.subscribeRaw(channel, [this](const void* data, uint32_t size, const ReceivedInfo& info) {
+        onAnswer(data, size, info);
+      });
+    }
   }
   if (!options_.masks_out.empty()) std::filesystem::create_directories(options_.masks_out);
 }
 
+void FramePlayer::onAnswer(const void* data, uint32_t size, const ReceivedInfo& info) {
+  // The answer types both carry the frame's seq; the generated decoders check the type's fingerprint.
+  int64_t seq = -1;
+  slam_pose_t pose;
+  detections_t detections;
+  const auto whole = [size](int status) { return status >= 0 && static_cast<uint32_t>(status) == size; };
+  if (whole(pose.decode(data, 0, static_cast<int>(size)))) {
+    seq = pose.seq;
+  } else if (whole(detections.decode(data, 0, static_cast<int>(size)))) {
+    seq = detections.seq;
+  } else {
+    lcm_.reportMalformed(info.channel, size, "bmp.slam_pose_t or bmp.detections_t");
+    return;
+  }
+  int64_t& last = last_answered_seq_[info.channel];
+  last = std::max(last, seq);
+}
+
 bool FramePlayer::waitForAck(int64_t seq) {
+  const auto answered = [&] {
+    for (const auto& [channel, last] : last_answered_seq_)
+      if (last < seq) return false;
+    return true;
+  };
   const Stopwatch watch;
-  while (last_acked_seq_ < seq && !stop_.requested()) {
+  while (!answered() && !stop_.requested()) {
     if (watch.elapsedMs() > options_.lockstep_timeout_s * 1000.0) return false;
     lcm_.handle(10);
   }
@@ -64,8 +91,11 @@ PlayerSummary FramePlayer::play(FrameSource& source) {
     if (!source.skips().last_reason.empty()) status_.setMessage(source.skips().last_reason);
     if (options_.mode == RateMode::kLockstep && !waitForAck(seq)) {
       ++summary.lockstep_timeouts;
-      log::warn("no answer on ", options_.ack_channel, " for frame ", seq, " within ",
-                options_.lockstep_timeout_s, " s; going on");
+      std::string missing;
+      for (const auto& [channel, last] : last_answered_seq_)
+        if (last < seq) missing += (missing.empty() ? "" : ", ") + channel;
+      log::warn("no answer on ", missing, " for frame ", seq, " within ", options_.lockstep_timeout_s,
+                " s; going on");
     }
     // Drain the socket even when not in lockstep, so our own subscriptions never back up.
     if (options_.mode != RateMode::kLockstep) lcm_.handle(0);

@@ -3,7 +3,9 @@
 // reports progress and keeps the ground truth of what it played.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/process.hpp"
@@ -14,7 +16,9 @@ namespace bmp::capture {
 
 struct PlayerOptions {
   std::string channel = "RGBD_FRAME";
-  std::string ack_channel = "SLAM_POSE";  // lockstep: the next frame goes out once this answers
+  // Lockstep: the next frame goes out once every one of these channels has answered this one (a slam_pose_t
+  // or detections_t carrying its seq), so the slowest consumer sets the pace and none falls behind.
+  std::vector<std::string> ack_channels{"SLAM_POSE"};
   RateMode mode = RateMode::kRealtime;
   double speed = 1.0;
   double lockstep_timeout_s = 5.0;
@@ -40,13 +44,14 @@ class FramePlayer {
 
  private:
   bool waitForAck(int64_t seq);
+  void onAnswer(const void* data, uint32_t size, const ReceivedInfo& info);
   void writeMask(const CapturedFrame& frame);
 
   LcmNode& lcm_;
   StopSignal& stop_;
   StatusReporter& status_;
   PlayerOptions options_;
-  int64_t last_acked_seq_ = -1;
+  std::map<std::string, int64_t> last_answered_seq_;  // per answer channel
 };
 
 }  // namespace bmp::capture

@@ -54,6 +54,13 @@ class LcmNode {
     subscribers_.push_back(std::move(sub));
   }
 
+  // Raw bytes of every message on channel, for a channel that may carry more than one type; the handler
+  // decodes, and reports what it cannot with reportMalformed().
+  using RawHandler = std::function<void(const void* data, uint32_t size, const ReceivedInfo&)>;
+  void subscribeRaw(const std::string& channel, RawHandler handler);
+  // Counts a message that did not decode and warns, naming the channel, its size and what was expected.
+  void reportMalformed(const std::string& channel, uint32_t size, const std::string& expected);
+
   // Waits up to timeout_ms for messages and dispatches them; returns false on an LCM error.
   bool handle(int timeout_ms);
   // Messages that did not decode, over all subscriptions.
@@ -75,7 +82,9 @@ class LcmNode {
       Msg msg;
       const int status = msg.decode(rbuf->data, 0, rbuf->data_size);
       if (status < 0 || static_cast<uint32_t>(status) != rbuf->data_size) {
-        node->reportMalformed(channel, rbuf->data_size, Msg::getTypeName(), status < 0);
+        node->reportMalformed(channel, rbuf->data_size,
+                              status < 0 ? std::string(Msg::getTypeName()) + " (wrong type or truncated)"
+                                         : std::string(Msg::getTypeName()) + " without trailing bytes");
         return;
       }
       handler(msg, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
@@ -83,7 +92,13 @@ class LcmNode {
     LcmNode* node;
     std::function<void(const Msg&, const ReceivedInfo&)> handler;
   };
-  void reportMalformed(const std::string& channel, uint32_t size, const char* type, bool undecodable);
+  struct RawSubscriber : SubscriberBase {
+    RawSubscriber(RawHandler fn) : handler(std::move(fn)) {}
+    void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+      handler(rbuf->data, rbuf->data_size, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+    }
+    RawHandler handler;
+  };
 
   std::string url_;
   lcm::LCM lcm_;
