@@ -19,6 +19,7 @@
 #include "bmp/common/image_codec.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
+#include "file_image.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
@@ -55,17 +56,6 @@ std::vector<BonnFrame> bonnFrames(std::size_t first, std::size_t n) {
   return frames;
 }
 
-image_t fileImage(const std::string& path, ImageEncoding encoding, PixelFormat format) {
-  EncodedImage image;
-  image.data = readFileBytes(path);
-  const ImageProbe probe = probeEncodedImage(image.data);
-  image.width = probe.width;
-  image.height = probe.height;
-  image.encoding = encoding;
-  image.pixel_format = format;
-  return toMsg(std::move(image));
-}
-
 rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
   rgbd_frame_t msg;
   msg.seq = seq;
@@ -73,8 +63,8 @@ rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
   msg.depth_utime = msg.utime;
   msg.source = "rgbd_bonn_crowd";
   msg.depth_scale = 5000.0;
-  msg.color = fileImage(frame.color_path, ImageEncoding::kJpeg, PixelFormat::kBgr8);
-  msg.depth = fileImage(frame.depth_path, ImageEncoding::kPng, PixelFormat::kMono16);
+  msg.color = test::fileImage(frame.color_path, PixelFormat::kBgr8);
+  msg.depth = test::fileImage(frame.depth_path, PixelFormat::kMono16);
   return msg;
 }
 

@@ -21,21 +21,11 @@
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/tum_sequence.hpp"
+#include "file_image.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
 namespace {
-
-image_t fileImage(const std::string& path, ImageEncoding encoding, PixelFormat format) {
-  EncodedImage image;
-  image.data = readFileBytes(path);
-  const ImageProbe probe = probeEncodedImage(image.data);
-  image.width = probe.width;
-  image.height = probe.height;
-  image.encoding = encoding;
-  image.pixel_format = format;
-  return toMsg(std::move(image));
-}
 
 camera_t bonnCamera() {
   camera_t c;
@@ -92,8 +82,8 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
     msg.source = "rgbd_bonn_crowd";
     msg.camera = bonnCamera();
     msg.depth_scale = 5000.0;
-    msg.color = fileImage(pair.rgb_path, ImageEncoding::kJpeg, PixelFormat::kBgr8);
-    msg.depth = fileImage(pair.depth_path, ImageEncoding::kPng, PixelFormat::kMono16);
+    msg.color = test::fileImage(pair.rgb_path, PixelFormat::kBgr8);
+    msg.depth = test::fileImage(pair.depth_path, PixelFormat::kMono16);
     node.publish("RGBD_FRAME", msg);
     // Lockstep, as bmp-capture does it: the next frame once this one is answered.
     ASSERT_TRUE(pumpUntil([&] { return static_cast<int>(poses.size()) > i; }, 20.0)) << "no pose for " << i;
