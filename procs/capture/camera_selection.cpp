@@ -4,6 +4,9 @@
 #include <cctype>
 #include <filesystem>
 
+#include "bmp/common/camera_config.hpp"
+#include "bmp/common/config.hpp"
+
 namespace bmp::capture {
 
 std::string cameraFileFor(const std::string& sequence_dir, const std::string& camera_config_dir) {
@@ -21,6 +24,20 @@ std::string cameraFileFor(const std::string& sequence_dir, const std::string& ca
   if (name.find("freiburg3") != std::string::npos || name.find("fr3") != std::string::npos)
     return pick("tum_fr3.yaml");
   return "";
+}
+
+SequenceCamera selectCamera(const std::string& sequence_dir, const std::string& camera_file,
+                            const std::string& camera_config_dir) {
+  SequenceCamera out;
+  out.file = camera_file.empty() ? cameraFileFor(sequence_dir, camera_config_dir) : camera_file;
+  if (out.file.empty())
+    throw ConfigError(sequence_dir +
+                      ": cannot tell which camera recorded this folder; pass --camera FILE "
+                      "(see config/cameras/) or put a camera.yaml in the folder");
+  const Config config = Config::fromFile(out.file);
+  out.intrinsics = cameraFromConfig(config.section("camera"));
+  config.finish();
+  return out;
 }
 
 }  // namespace bmp::capture

@@ -98,16 +98,9 @@ std::unique_ptr<FrameSource> makeSource(ProcessContext& ctx, const Config& cfg) 
   const std::string dir = args.value("dataset");
   // The folder first: a missing folder must be reported as such, not as an unknown camera.
   SequenceIndex index = indexSequence(dir, max_difference);
-  std::string camera_file = args.value("camera");
-  if (camera_file.empty()) camera_file = cameraFileFor(dir, configDir() + "/cameras");
-  if (camera_file.empty())
-    throw ConfigError(dir +
-                      ": cannot tell which camera recorded this folder; pass --camera FILE "
-                      "(see config/cameras/) or put a camera.yaml in the folder");
-  const Config camera_config = Config::fromFile(camera_file);
-  const CameraIntrinsics camera = cameraFromConfig(camera_config.section("camera"));
-  camera_config.finish();
-  log::info("camera from ", camera_file);
+  const SequenceCamera selected = selectCamera(dir, args.value("camera"), configDir() + "/cameras");
+  const CameraIntrinsics& camera = selected.intrinsics;
+  log::info("camera from ", selected.file);
   TumSourceOptions options;
   options.selection = selection;
   options.verify = parseVerifyMode(verify);

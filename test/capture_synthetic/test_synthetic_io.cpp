@@ -183,11 +183,9 @@ TEST(SyntheticTumFolder, PlaysThroughTheTumReader) {
   const SyntheticScene scene(shortSequence(5));
   const std::string dir = test::scratchDir("synthetic_tum_play").string();
   writeTumFolder(scene, dir);
-  const std::string camera_file = cameraFileFor(dir, test::sourceDir() + "/config/cameras");
-  ASSERT_EQ(camera_file, dir + "/camera.yaml");
-  const Config camera_config = Config::fromFile(camera_file);
-  const CameraIntrinsics k = cameraFromConfig(camera_config.section("camera"));
-  camera_config.finish();
+  const SequenceCamera selected = selectCamera(dir, "", test::sourceDir() + "/config/cameras");
+  ASSERT_EQ(selected.file, dir + "/camera.yaml");
+  const CameraIntrinsics& k = selected.intrinsics;
   EXPECT_EQ(k.fx, scene.camera().fx);
   EXPECT_EQ(k.depth_scale, scene.camera().depth_scale);
   TumSource source(indexSequence(dir), k, {});

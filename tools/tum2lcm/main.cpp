@@ -23,13 +23,8 @@ int convert(const ArgParser& args) {
   const std::string dir = args.value("dataset");
   const std::string out_path = args.value("out");
   if (dir.empty() || out_path.empty()) throw ArgError("tum2lcm: --dataset and --out are required");
-  std::string camera_file = args.value("camera");
-  if (camera_file.empty()) camera_file = cameraFileFor(dir, configDir() + "/cameras");
-  if (camera_file.empty())
-    throw ArgError("tum2lcm: cannot tell the camera of " + dir + "; pass --camera FILE");
-  const Config camera_config = Config::fromFile(camera_file);
-  const CameraIntrinsics camera = cameraFromConfig(camera_config.section("camera"));
-  camera_config.finish();
+  const CameraIntrinsics camera =
+      selectCamera(dir, args.value("camera"), configDir() + "/cameras").intrinsics;
 
   TumSourceOptions options;
   options.selection = {args.integer("start"), args.integer("end"), args.integer("every")};
