@@ -1,10 +1,19 @@
 #include "tracker/frame_pose.hpp"
 
+#include "tracker/key_frame.hpp"
 #include "tracker/map_point.hpp"
 #include "tracker/pose_consensus.hpp"
 #include "tracker/pose_optimizer.hpp"
 
 namespace bmp::tracker {
+
+bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options) {
+  if (static_cast<int>(mp.observations.size()) < options.mature_observations) return false;
+  if (options.mature_span_s <= 0.0) return true;
+  // Observations are ordered by keyframe id, so by time: the first and the last bound the span.
+  return mp.observations.rbegin()->first->stamp - mp.observations.begin()->first->stamp >=
+         options.mature_span_s;
+}
 
 int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options) {
   const Features& f = *frame.features;
@@ -23,8 +32,7 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
     o.information = g.pyramid.inv_sigma2[f.level(i)];
     o.weight = f.weight[i];
     // Points seen by few keyframes are the least proven: new structure, or something that moves.
-    if (static_cast<int>(mp->observations.size()) < options.mature_observations)
-      o.weight *= options.young_point_weight;
+    if (!isMature(*mp, options)) o.weight *= options.young_point_weight;
     obs.push_back(o);
     index.push_back(i);
   }

@@ -6,6 +6,11 @@
 
 namespace bmp::tracker {
 
+class MapPoint;
+
+// Whether a map point counts fully in the pose: seen by enough keyframes, over a long enough time.
+bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options);
+
 // Sets the frame's pose and outlier flags; returns the number of inliers.
 int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options);
 // Unmatches the outliers; returns the matches left that are map points (not temporary ones).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "tracker/frame_pose.hpp"
 #include "tracker/local_ba.hpp"
 #include "tracker/local_mapper.hpp"
 #include "tracker/matcher.hpp"
@@ -37,6 +38,8 @@ void LocalMapper::bundleAdjust(const std::shared_ptr<KeyFrame>& kf, std::unique_
     }
   }
   for (const auto& mp : pts) {
+    // As in the pose: unproven points do not pull the keyframes (their own position is still refined).
+    const bool mature = isMature(*mp, config_.pose);
     for (const auto& [other, idx] : mp->observations) {
       if (other->bad) continue;
       addKf(other, true, ba);
@@ -47,7 +50,7 @@ void LocalMapper::bundleAdjust(const std::shared_ptr<KeyFrame>& kf, std::unique_
       o.uv = f.un[idx];
       o.u_right = f.uRight(g, idx);
       o.information = g.pyramid.inv_sigma2[f.level(idx)];
-      o.weight = f.weight[idx];
+      o.weight = f.weight[idx] * (mature ? 1.0 : config_.pose.young_point_weight);
       ba.observations.push_back(o);
     }
   }

@@ -71,10 +71,12 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(p, "consensus_iterations", cfg.pose.consensus_iterations);
   read(p, "consensus_chi2_factor", cfg.pose.consensus_chi2_factor);
   read(p, "mature_observations", cfg.pose.mature_observations);
+  read(p, "mature_span_s", cfg.pose.mature_span_s);
   read(p, "young_point_weight", cfg.pose.young_point_weight);
   check(cfg.pose.young_point_weight > 0.0 && cfg.pose.young_point_weight <= 1.0, p, "young_point_weight",
         "must be in (0, 1]");
   check(cfg.pose.rounds >= 1, p, "rounds", "must be at least 1");
+  check(cfg.pose.mature_span_s >= 0.0, p, "mature_span_s", "must not be negative");
 
   const Config k = section.section("keyframes");
   read(k, "max_frames", cfg.keyframes.max_frames);

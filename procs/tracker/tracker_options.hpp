@@ -44,7 +44,8 @@ struct PoseOptimizerOptions {
   int consensus_iterations = 60;       // 3-point hypotheses tried against the prediction (0: off)
   double consensus_chi2_factor = 1.0;  // inlier test while scoring hypotheses, times chi2
   int mature_observations = 3;         // keyframes that must see a point before it counts fully
-  double young_point_weight = 0.05;    // cost weight of a point seen by fewer (temporary points: 0 keyframes)
+  double mature_span_s = 1.0;          // ... spread over at least this time (first to last keyframe)
+  double young_point_weight = 0.05;    // cost weight of a younger point, pose and local BA (temporary: 0 kfs)
 };
 
 struct KeyframeOptions {

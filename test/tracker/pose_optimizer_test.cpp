@@ -2,6 +2,9 @@
 
 #include <random>
 
+#include "tracker/frame_pose.hpp"
+#include "tracker/key_frame.hpp"
+#include "tracker/map_point.hpp"
 #include "tracker/pose_optimizer.hpp"
 
 namespace bmp::tracker {
@@ -72,6 +75,28 @@ TEST(TrackerPoseOptimizer, WeightZeroObservationsTakeNoPart) {
   T.translation() = Eigen::Vector3d(0.01, 0.0, 0.0);
   EXPECT_EQ(optimizePose(T, obs, cam, PoseOptimizerOptions{}), 30);
   EXPECT_LT(T.translation().norm(), 1e-4);
+}
+
+// A point counts fully in the pose once enough keyframes saw it, spread over enough time: keyframes come
+// fast while people fill the view, and a walking person's points must not mature in a fraction of a second.
+TEST(TrackerPoseOptimizer, PointMaturesByKeyframesAndTimeSpan) {
+  PoseOptimizerOptions options;
+  options.mature_observations = 3;
+  options.mature_span_s = 1.0;
+  std::vector<std::shared_ptr<KeyFrame>> kfs;
+  for (int k = 0; k < 4; ++k)
+    kfs.push_back(std::make_shared<KeyFrame>(k, Frame(k, 10.0 + 0.4 * k, std::make_shared<Features>())));
+  MapPoint mp(0, Eigen::Vector3d(0, 0, 2), cv::Mat::zeros(1, 32, CV_8U), 0);
+  mp.observations[kfs[0].get()] = 0;
+  mp.observations[kfs[1].get()] = 0;
+  EXPECT_FALSE(isMature(mp, options));  // two keyframes
+  mp.observations[kfs[2].get()] = 0;
+  EXPECT_FALSE(isMature(mp, options));  // three, but within 0.8 s
+  mp.observations[kfs[3].get()] = 0;
+  EXPECT_TRUE(isMature(mp, options));  // four over 1.2 s
+  options.mature_span_s = 0.0;
+  mp.observations.erase(kfs[3].get());
+  EXPECT_TRUE(isMature(mp, options));  // span check off: three keyframes are enough
 }
 
 }  // namespace

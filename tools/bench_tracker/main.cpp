@@ -1,8 +1,10 @@
 // bmp-bench-tracker: runs the tracker over a TUM-format folder in lockstep and prints per-frame tracking
 // time (median, p95), frames lost and the ATE against the folder's groundtruth.txt.
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
+#include <thread>
 
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/camera_config.hpp"
@@ -35,7 +37,11 @@ int run(const bmp::ArgParser& args) {
   OfflineOptions options;
   options.max_frames = args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
   const bool verbose = args.flag("verbose");
-  options.on_result = [verbose](const TrackResult& r) {
+  // A pause after each frame, as between frames of the pipeline: local mapping then has time to finish
+  // (the pipeline's lockstep leaves it idle when the next frame arrives), which changes its timing.
+  const auto gap = std::chrono::milliseconds(args.integer("frame-gap-ms"));
+  options.on_result = [verbose, gap](const TrackResult& r) {
+    if (gap.count() > 0) std::this_thread::sleep_for(gap);
     if (verbose || r.seq % 100 == 0)
       std::fprintf(stderr, "frame %5lld %-12s kp %4d excluded %4d tracked %4d map %6d kfs %4d  %.1f ms\n",
                    static_cast<long long>(r.seq), toString(r.state), r.num_keypoints, r.num_excluded,
@@ -107,6 +113,8 @@ int main(int argc, char** argv) {
   args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
   args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
   args.addOption("errors", "FILE", "write each frame's position error after alignment (stamp metres)");
+  args.addOption("frame-gap-ms", "N", "sleep N ms after each frame (idle time, as between pipeline frames)",
+                 "0");
   args.addFlag("inline-mapping", "run local mapping inline instead of in its thread (deterministic)");
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("verbose", "print every frame's state, not every 100th");
