@@ -58,6 +58,14 @@ int Features::numExcluded() const {
   return static_cast<int>(std::count(excluded.begin(), excluded.end(), 1));
 }
 
+std::vector<int> Features::nearestWithDepth() const {
+  std::vector<int> order;
+  for (int i = 0; i < size(); ++i)
+    if (hasDepth(i) && !excluded[i]) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+  return order;
+}
+
 std::shared_ptr<const Features> buildFeatures(OrbFeatures orb, const cv::Mat& depth, const FrameGeometry& g,
                                               const KeypointWeightFn& weight_fn,
                                               const cv::Mat& exclusion_mask) {

@@ -62,6 +62,8 @@ struct Features {
   std::vector<int> inArea(const FrameGeometry& g, double u, double v, double r, int min_level = -1,
                           int max_level = -1) const;
   int numExcluded() const;
+  // Keypoints with depth that are not excluded, nearest first: the order new points are made from depth.
+  std::vector<int> nearestWithDepth() const;
 };
 
 // Builds the per-keypoint data from ORB output. depth: CV_16UC1 (raw units, scaled by the camera's

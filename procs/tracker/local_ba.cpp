@@ -4,29 +4,12 @@
 
 #include <cmath>
 
+#include "tracker/pose_params.hpp"
 #include "tracker/residuals.hpp"
 
 namespace bmp::tracker {
 
 namespace {
-
-void toParams(const SE3& T, double* pose) {
-  const Eigen::AngleAxisd aa(T.rotation());
-  const Eigen::Vector3d w = aa.angle() * aa.axis();
-  for (int i = 0; i < 3; ++i) {
-    pose[i] = w[i];
-    pose[3 + i] = T.translation()[i];
-  }
-}
-
-SE3 fromParams(const double* pose) {
-  const Eigen::Vector3d w(pose[0], pose[1], pose[2]);
-  const double angle = w.norm();
-  SE3 T = SE3::Identity();
-  if (angle > 1e-12) T.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(pose[3], pose[4], pose[5]);
-  return normalized(T);
-}
 
 double chi2Of(const double* pose, const double* p, const BaObservation& o, const PoseCamera& c) {
   PoseObservation po;
@@ -34,11 +17,11 @@ double chi2Of(const double* pose, const double* p, const BaObservation& o, const
   po.uv = o.uv;
   po.u_right = o.u_right;
   po.information = o.information;
-  return poseChi2(fromParams(pose), po, c);
+  return poseChi2(normalized(poseFromParams(pose)), po, c);
 }
 
 bool behindCamera(const double* pose, const double* p) {
-  return (fromParams(pose) * Eigen::Vector3d(p[0], p[1], p[2])).z() <= 0.0;
+  return (normalized(poseFromParams(pose)) * Eigen::Vector3d(p[0], p[1], p[2])).z() <= 0.0;
 }
 
 }  // namespace
@@ -48,7 +31,8 @@ BaSummary solveLocalBa(BaProblem& ba, const PoseCamera& camera, const MappingOpt
   BaSummary summary;
   std::vector<double> poses(ba.keyframes.size() * 6);
   std::vector<double> points(ba.points.size() * 3);
-  for (std::size_t k = 0; k < ba.keyframes.size(); ++k) toParams(ba.keyframes[k].T_cam_world, &poses[6 * k]);
+  for (std::size_t k = 0; k < ba.keyframes.size(); ++k)
+    poseToParams(ba.keyframes[k].T_cam_world, &poses[6 * k]);
   for (std::size_t i = 0; i < ba.points.size(); ++i)
     for (int j = 0; j < 3; ++j) points[3 * i + j] = ba.points[i].p_world[j];
   const PinholeBf cam{camera.fx, camera.fy, camera.cx, camera.cy, camera.bf};
@@ -101,7 +85,7 @@ BaSummary solveLocalBa(BaProblem& ba, const PoseCamera& camera, const MappingOpt
   summary.outliers = 0;
   for (const auto& o : ba.observations) summary.outliers += o.outlier;
   for (std::size_t k = 0; k < ba.keyframes.size(); ++k)
-    if (!ba.keyframes[k].fixed) ba.keyframes[k].T_cam_world = fromParams(&poses[6 * k]);
+    if (!ba.keyframes[k].fixed) ba.keyframes[k].T_cam_world = normalized(poseFromParams(&poses[6 * k]));
   for (std::size_t i = 0; i < ba.points.size(); ++i)
     ba.points[i].p_world = Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
   return summary;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "tracker/pose_params.hpp"
 #include "tracker/residuals.hpp"
 
 namespace bmp::tracker {
@@ -12,24 +13,6 @@ namespace {
 
 PinholeBf toPinhole(const PoseCamera& c) {
   return {c.fx, c.fy, c.cx, c.cy, c.bf};
-}
-
-void toParams(const SE3& T, double* pose) {
-  const Eigen::AngleAxisd aa(T.rotation());
-  const Eigen::Vector3d w = aa.angle() * aa.axis();
-  for (int i = 0; i < 3; ++i) {
-    pose[i] = w[i];
-    pose[3 + i] = T.translation()[i];
-  }
-}
-
-SE3 fromParams(const double* pose) {
-  const Eigen::Vector3d w(pose[0], pose[1], pose[2]);
-  const double angle = w.norm();
-  SE3 T = SE3::Identity();
-  if (angle > 1e-12) T.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(pose[3], pose[4], pose[5]);
-  return T;
 }
 
 }  // namespace
@@ -49,7 +32,7 @@ double poseChi2(const SE3& T, const PoseObservation& o, const PoseCamera& c) {
 int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const PoseCamera& camera,
                  const PoseOptimizerOptions& options) {
   double pose[6];
-  toParams(T_cam_world, pose);
+  poseToParams(T_cam_world, pose);
   const PinholeBf cam = toPinhole(camera);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
@@ -82,7 +65,7 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     // Reclassify every observation, so a point wrongly rejected early can return.
-    const SE3 T = fromParams(pose);
+    const SE3 T = poseFromParams(pose);
     inliers = 0;
     for (auto& o : obs) {
       const double chi2 = poseChi2(T, o, camera);
@@ -91,7 +74,7 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
     }
     if (inliers < 10) break;
   }
-  T_cam_world = normalized(fromParams(pose));
+  T_cam_world = normalized(poseFromParams(pose));
   return inliers;
 }
 

@@ -157,12 +157,8 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   map_.addKeyFrame(kf);
   // Points from depth: every close keypoint without one, and the nearest others up to new_points_min.
   const Features& f = *frame.features;
-  std::vector<int> order;
-  for (int i = 0; i < f.size(); ++i)
-    if (f.hasDepth(i) && !f.excluded[i]) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return f.depth[a] < f.depth[b]; });
   int count = 0;
-  for (int i : order) {
+  for (int i : f.nearestWithDepth()) {
     if (f.depth[i] > geometry_->close_depth && count >= config_.keyframes.new_points_min) break;
     ++count;
     if (kf->points[i]) continue;

@@ -22,12 +22,8 @@ void Tracker::prepareLastFrame() {
   // favour near (often moving) structure, and the map alone tracks better in dynamic scenes.
   if (config_.tracking.temporal_points <= 0) return;
   const Features& f = *last_frame_.features;
-  std::vector<int> order;
-  for (int i = 0; i < f.size(); ++i)
-    if (f.hasDepth(i) && !f.excluded[i]) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return f.depth[a] < f.depth[b]; });
   int count = 0;
-  for (int i : order) {
+  for (int i : f.nearestWithDepth()) {
     if (count >= config_.tracking.temporal_points) break;
     ++count;
     if (last_frame_.points[i]) continue;
