@@ -7,9 +7,10 @@
 #include <thread>
 
 #include "bmp/common/arg_parser.hpp"
-#include "bmp/common/camera_config.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/log.hpp"
+#include "bmp/lcm/process.hpp"
+#include "capture/camera_selection.hpp"
 #include "tracker/offline_runner.hpp"
 #include "tracker/tracker_config.hpp"
 #include "tracker/trajectory_eval.hpp"
@@ -18,11 +19,13 @@ namespace {
 
 int run(const bmp::ArgParser& args) {
   using namespace bmp::tracker;
-  const bmp::Config camera_file = bmp::Config::fromFile(args.value("camera"));
-  const bmp::CameraIntrinsics camera = bmp::cameraFromConfig(camera_file.section("camera"));
-  camera_file.finish();
+  // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
+  const bmp::capture::SequenceCamera selected =
+      bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
+  const bmp::CameraIntrinsics& camera = selected.intrinsics;
+  std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
   TrackerConfig config;
-  if (args.given("config")) {
+  if (!args.value("config").empty()) {
     const bmp::Config file = bmp::Config::fromFile(args.value("config"));
     config = trackerConfigFromConfig(file.section("tracker"));
     // The file's `process` section configures bmp-tracker's LCM side, which the benchmark does not have.
@@ -105,9 +108,10 @@ int main(int argc, char** argv) {
       "Tracks a TUM-format RGB-D folder frame by frame (no LCM) and reports tracking time per "
       "frame (median, p95), frames lost and ATE RMSE against groundtruth.txt.");
   args.addOption("dataset", "DIR", "TUM-format folder (rgb.txt, depth.txt, optional groundtruth.txt)");
-  args.addOption("camera", "FILE", "camera YAML (key 'camera'), e.g. config/cameras/bonn.yaml");
-  args.addOption("config", "FILE",
-                 "tracker YAML (key 'tracker'), e.g. config/tracker.yaml; default: built-in");
+  args.addOption("camera", "FILE",
+                 "camera YAML (key 'camera'); default: DIR/camera.yaml, else chosen by the folder's name");
+  args.addOption("config", "FILE", "tracker YAML (key 'tracker'); empty: built-in defaults",
+                 bmp::configDir() + "/tracker.yaml");
   args.addOption("frames", "N", "track at most N frames");
   args.addOption("start", "N", "skip the first N associated frames", "0");
   args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
@@ -123,8 +127,7 @@ int main(int argc, char** argv) {
       std::cout << args.help();
       return 0;
     }
-    if (!args.given("dataset") || !args.given("camera"))
-      throw bmp::ArgError("--dataset and --camera are required");
+    if (!args.given("dataset")) throw bmp::ArgError("--dataset is required");
   } catch (const bmp::ArgError& e) {
     std::cerr << "bmp-bench-tracker: " << e.what() << "\n" << args.help();
     return 2;
