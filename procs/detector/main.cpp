@@ -6,7 +6,6 @@
 #include <optional>
 #include <string>
 
-#include <bmp/detections_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/log.hpp"
@@ -15,39 +14,12 @@
 #include "bmp/lcm/process.hpp"
 #include "detector/detection_worker.hpp"
 #include "detector/detector.hpp"
+#include "detector/lcm/detections_message.hpp"
 #include "detector/wakeup.hpp"
 
 namespace {
 
 using namespace bmp::detector;
-
-static_assert(static_cast<int>(DynamicLevel::kHigh) == bmp::detection_t::LEVEL_HIGH &&
-              static_cast<int>(DynamicLevel::kMedium) == bmp::detection_t::LEVEL_MEDIUM &&
-              static_cast<int>(DynamicLevel::kLow) == bmp::detection_t::LEVEL_LOW);
-
-bmp::detections_t toMsg(const FrameResult& result, const std::string& model) {
-  bmp::detections_t msg;
-  msg.utime = result.utime;
-  msg.seq = result.seq;
-  msg.model = model;
-  msg.inference_ms = static_cast<float>(result.total_ms);
-  msg.image_width = result.width;
-  msg.image_height = result.height;
-  for (const auto& d : result.detections) {
-    bmp::detection_t box;
-    box.x = d.box.x;
-    box.y = d.box.y;
-    box.width = d.box.width;
-    box.height = d.box.height;
-    box.class_id = static_cast<int16_t>(d.class_id);
-    box.label = d.label;
-    box.score = d.score;
-    box.dynamic_level = static_cast<int8_t>(d.level);
-    msg.detections.push_back(std::move(box));
-  }
-  msg.num_detections = static_cast<int32_t>(msg.detections.size());
-  return msg;
-}
 
 // A relative path in the configuration is relative to the folder of the file that names it.
 std::string besideConfig(const bmp::Config& config, const std::string& path) {
@@ -147,7 +119,7 @@ int run(bmp::ProcessContext& ctx) {
         ctx.status.setMessage(warning);
         continue;
       }
-      ctx.lcm.publish(detections_channel, toMsg(result, model_name));
+      ctx.lcm.publish(detections_channel, toDetectionsMessage(result, model_name));
       ctx.status.processed();
       frame_times.add(result.total_ms);
       ctx.status.published();

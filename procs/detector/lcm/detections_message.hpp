@@ -1,0 +1,37 @@
+#pragma once
+// The DETECTIONS contract (lcmtypes/detections_t.lcm) both ways: bmp-detector writes it, and a subscriber
+// (the tracker's dynamic stage, tests) reads it back, checked, as the library's types.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <bmp/detections_t.hpp>
+
+#include "detector/detection_worker.hpp"
+#include "detector/detector.hpp"
+
+namespace bmp::detector {
+
+// A DETECTIONS message that does not describe boxes in an image: names the frame and what is wrong.
+class DetectionsMessageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct FrameDetections {
+  int64_t seq = 0;
+  int64_t utime = 0;
+  std::string model;
+  int width = 0;  // the colour image the boxes refer to
+  int height = 0;
+  double inference_ms = 0.0;
+  std::vector<Detection> detections;
+};
+
+detections_t toDetectionsMessage(const FrameResult& result, const std::string& model);
+
+// Throws DetectionsMessageError for an unknown level, a non-finite or empty box, a box outside the image,
+// a score outside [0, 1] or an image without size: another publisher's message is not trusted blindly.
+FrameDetections fromDetectionsMessage(const detections_t& msg);
+
+}  // namespace bmp::detector
