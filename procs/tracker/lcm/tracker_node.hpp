@@ -1,0 +1,48 @@
+#pragma once
+// bmp-tracker's LCM side: frames in (a bounded queue, oldest gives way), the Tracker called on each, its
+// results out as messages. The process's main only reads configuration and runs it.
+#include <deque>
+#include <memory>
+#include <string>
+
+#include <bmp/rgbd_frame_t.hpp>
+
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/process.hpp"
+#include "tracker/tracker.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+struct TrackerChannels {
+  std::string frames = "RGBD_FRAME";
+  std::string pose = "SLAM_POSE";
+  std::string keyframe = "SLAM_KEYFRAME";
+  std::string keyframe_poses = "SLAM_KEYFRAME_POSES";
+};
+
+class TrackerNode {
+ public:
+  TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels,
+              std::size_t queue_capacity);
+
+  // Until a stop is requested, or idle_exit_s (> 0) seconds pass without a frame after the first.
+  void run(double idle_exit_s);
+  // The tracker, once the first frame made it (it takes the camera from that frame); else null.
+  Tracker* tracker() { return tracker_.get(); }
+
+ private:
+  void process(const rgbd_frame_t& msg);
+
+  ProcessContext& ctx_;
+  TrackerConfig config_;
+  TrackerChannels channels_;
+  std::size_t capacity_;
+  std::deque<rgbd_frame_t> pending_;
+  std::unique_ptr<Tracker> tracker_;
+  cv::Mat empty_mask_;  // no dynamic handling yet: nothing is masked
+  TimingStats timing_;
+  int64_t lost_ = 0;
+};
+
+}  // namespace bmp::tracker
