@@ -66,11 +66,34 @@ std::string formatTumLine(const StampedPose& pose) {
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
-  std::ofstream out(path);
-  if (!out) throw TrajectoryError(path + ": cannot write trajectory file");
-  out << "# timestamp tx ty tz qx qy qz qw\n";
-  for (const auto& pose : trajectory) out << formatTumLine(pose) << "\n";
-  if (!out) throw TrajectoryError(path + ": write failed");
+  // Written beside and renamed over: a reader (or a kill) never sees half a file, and whatever was at the
+  // path before, such as a live trajectory, stays until the whole new one is there.
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw TrajectoryError(path + ": cannot write trajectory file");
+    out << "# timestamp tx ty tz qx qy qz qw\n";
+    for (const auto& pose : trajectory) out << formatTumLine(pose) << "\n";
+    out.flush();
+    if (!out) throw TrajectoryError(path + ": write failed");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw TrajectoryError(path + ": cannot replace the file");
+  }
+}
+
+TumTrajectoryStream::TumTrajectoryStream(const std::string& path, const std::string& comment)
+    : path_(path), out_(path) {
+  if (!out_) throw TrajectoryError(path + ": cannot write trajectory file");
+  if (!comment.empty()) out_ << "# " << comment << "\n";
+  out_ << "# timestamp tx ty tz qx qy qz qw" << std::endl;
+}
+
+void TumTrajectoryStream::append(const StampedPose& pose) {
+  // Flushed per pose: a process killed at any moment leaves every pose it had published.
+  out_ << formatTumLine(pose) << std::endl;
+  if (!out_) throw TrajectoryError(path_ + ": write failed");
 }
 
 }  // namespace bmp

@@ -12,8 +12,10 @@ using namespace bmp;
 using namespace bmp::tracker;
 
 void addOptions(ArgParser& args) {
-  args.addOption("trajectory", "FILE", "write every tracked frame's pose on exit (TUM format)");
-  args.addOption("keyframe-trajectory", "FILE", "write the keyframe poses on exit (TUM format)");
+  args.addOption("trajectory", "FILE",
+                 "every tracked frame's pose (TUM format): written as tracked, replaced by the optimised "
+                 "trajectory on exit");
+  args.addOption("keyframe-trajectory", "FILE", "the keyframe poses (TUM format), likewise");
   args.addOption("idle-exit", "SECONDS",
                  "exit once no frame arrived for this long after the first (0: never)", "0");
   args.addEpilog(
@@ -35,25 +37,15 @@ int run(ProcessContext& ctx) {
   if (capacity < 1) throw ConfigError(process.origin() + ": process.frame_queue_capacity must be at least 1");
   finishConfig(ctx);
 
-  TrackerNode node(ctx, config, channels, static_cast<std::size_t>(capacity));
+  TrackerOutputs outputs;
+  outputs.trajectory = ctx.args.value("trajectory");
+  outputs.keyframe_trajectory = ctx.args.value("keyframe-trajectory");
+  TrackerNode node(ctx, config, channels, static_cast<std::size_t>(capacity), outputs);
   ctx.status.tick(true);
   node.run(ctx.args.number("idle-exit"));
-  // Written on every exit path that reaches here, SIGINT included: the loop only ends by a stop request.
-  if (node.tracker()) {
-    if (ctx.args.given("trajectory")) {
-      const Trajectory t = node.tracker()->trajectory();
-      writeTumTrajectory(ctx.args.value("trajectory"), t);
-      log::info("trajectory (", t.size(), " poses) written to ", ctx.args.value("trajectory"));
-    }
-    if (ctx.args.given("keyframe-trajectory")) {
-      const Trajectory t = node.tracker()->keyFrameTrajectory();
-      writeTumTrajectory(ctx.args.value("keyframe-trajectory"), t);
-      log::info("keyframe trajectory (", t.size(), " poses) written to ",
-                ctx.args.value("keyframe-trajectory"));
-    }
-  } else {
-    log::warn("no frame received; no trajectory written");
-  }
+  // Reached on every exit but a kill (the loop only ends by a stop request or idle-exit); after a kill the
+  // files hold the live poses, written one by one.
+  node.writeTrajectories();
   ctx.status.finish();
   return 0;
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "bmp/common/tum_trajectory.hpp"
@@ -28,6 +29,35 @@ TEST(TumTrajectory, WriteReadRoundTrip) {
   for (std::size_t i = 0; i < t.size(); ++i) {
     EXPECT_NEAR(r[i].stamp, t[i].stamp, 1e-6);
     EXPECT_LT((r[i].T_world_cam.matrix() - t[i].T_world_cam.matrix()).norm(), 1e-6);
+  }
+}
+
+// Each appended pose is on disk at once (a killed writer leaves them all), and a final write replaces the
+// live file whole.
+TEST(TumTrajectory, StreamIsReadableAfterEachPoseAndFinalWriteReplacesIt) {
+  const auto path = (test::scratchDir("tum_stream") / "live.txt").string();
+  TumTrajectoryStream live(path, "live poses");
+  for (int i = 0; i < 3; ++i) {
+    live.append({10.0 + i, makeSE3({double(i), 0, 0}, Eigen::Quaterniond::Identity())});
+    const Trajectory now = readTumTrajectory(path);  // while the stream is still open
+    ASSERT_EQ(now.size(), static_cast<std::size_t>(i + 1));
+    EXPECT_NEAR(now.back().T_world_cam.translation().x(), i, 1e-9);
+  }
+  EXPECT_EQ(test::readFirstLine(path), "# live poses");
+  writeTumTrajectory(path, {{20.0, SE3::Identity()}});
+  const Trajectory final_poses = readTumTrajectory(path);
+  ASSERT_EQ(final_poses.size(), 1u);
+  EXPECT_EQ(final_poses[0].stamp, 20.0);
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+TEST(TumTrajectory, UnwritablePathsAreErrorsNamingThem) {
+  EXPECT_THROW(writeTumTrajectory("/nonexistent-dir/t.txt", {}), TrajectoryError);
+  try {
+    TumTrajectoryStream s("/nonexistent-dir/live.txt", "");
+    FAIL();
+  } catch (const TrajectoryError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/live.txt"), std::string::npos) << e.what();
   }
 }
 

@@ -1,6 +1,10 @@
 // Process-level behaviour: --help everywhere, configuration and input errors, and the launcher.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -153,6 +157,59 @@ TEST(Launcher, FailingProcessFailsTheRun) {
                  120);
   EXPECT_NE(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("bmp-test-listener ended early"), std::string::npos) << o.output;
+}
+
+// The pid of a running bmp-tracker whose command line mentions `marker` (its run folder), or -1.
+pid_t findTracker(const std::string& marker) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = test::readText((entry.path() / "cmdline").string());
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find("/bmp-tracker ") != std::string::npos && cmdline.find(marker) != std::string::npos)
+      return static_cast<pid_t>(std::stol(name));
+  }
+  return -1;
+}
+
+// A tracker killed mid-run (SIGKILL: no chance to write on exit) fails the run, and its poses up to then are
+// kept in the run folder and evaluated.
+TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
+  const fs::path dir = test::scratchDir("launcher_killed_tracker");
+  std::ofstream(dir / "run.yaml")
+      << "run:\n  output_root: " << (dir / "out").string()
+      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
+      << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\"]\n"
+      << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+  const fs::path out = dir / "run";
+  const fs::path log = dir / "bmp-run.log";
+  ChildProcess run({binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset", test::bonnDir(),
+                    "--frames", "400", "--out", out.string(), "--lcm-url", test::uniqueLcmUrl(9)},
+                   ChildProcess::Output::kFile, log.string());
+  const fs::path trajectory = out / "trajectory.txt";
+  const auto poses = [&] {
+    try {
+      return fs::exists(trajectory) ? readTumTrajectory(trajectory.string()).size() : std::size_t{0};
+    } catch (const TrajectoryError&) {
+      return std::size_t{0};  // a line being written
+    }
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+  while (poses() < 20 && run.running() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_GE(poses(), 20u) << test::readText(log.string());
+  const pid_t tracker = findTracker(out.string());
+  ASSERT_GT(tracker, 0) << "bmp-tracker not found";
+  ASSERT_EQ(::kill(tracker, SIGKILL), 0);
+
+  const int status = run.wait(120).value_or(-1);
+  const std::string output = test::readText(log.string());
+  EXPECT_NE(status, 0) << output;
+  EXPECT_NE(output.find("bmp-tracker ended early"), std::string::npos) << output;
+  const std::size_t kept = poses();
+  EXPECT_GE(kept, 20u);
+  EXPECT_LT(kept, 400u);  // killed well before the end
+  EXPECT_NE(test::readText((out / "eval.json").string()).find("\"ate\""), std::string::npos) << output;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Paths to ../shared (read in place, never copied) and to the repository, for tests.
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace bmp::test {
@@ -32,6 +33,14 @@ inline std::filesystem::path scratchDir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// The first line of a text file ("" when it cannot be read).
+inline std::string readFirstLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
 }
 
 }  // namespace bmp::test

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -40,41 +42,48 @@ camera_t bonnCamera() {
   return c;
 }
 
-TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
-  const int port = 23000 + static_cast<int>(getpid() % 20000);
-  const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-  const auto dir = test::scratchDir("tracker_process");
-  const std::string trajectory = (dir / "trajectory.txt").string();
-  const std::string keyframes = (dir / "keyframes.txt").string();
-  const std::string log_path = (dir / "bmp-tracker.log").string();
+// A bmp-tracker child on a test-unique udpm URL, and the test's own LCM node that feeds and watches it.
+class TrackerUnderTest {
+ public:
+  explicit TrackerUnderTest(const std::string& name, int port_offset)
+      : url_("udpm://239.255.76.67:" +
+             std::to_string(23000 + port_offset + static_cast<int>(getpid() % 20000)) +
+             "?ttl=0&recv_buf_size=4194304"),
+        dir_(test::scratchDir(name)),
+        node_(url_),
+        index_(capture::indexSequence(test::bonnDir())) {
+    node_.subscribe<slam_pose_t>("SLAM_POSE",
+                                 [this](const slam_pose_t& m, const ReceivedInfo&) { poses.push_back(m); });
+    node_.subscribe<keyframe_t>("SLAM_KEYFRAME",
+                                [this](const keyframe_t& m, const ReceivedInfo&) { keyframes.push_back(m); });
+    node_.subscribe<process_status_t>("PROCESS_STATUS",
+                                      [this](const process_status_t& m, const ReceivedInfo&) {
+                                        heartbeat_ = heartbeat_ || m.name == "bmp-tracker";
+                                      });
+    child_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{test::binPath("bmp-tracker"), "--config",
+                                 test::sourceDir() + "/config/tracker.yaml", "--lcm-url", url_,
+                                 "--trajectory", trajectory(), "--keyframe-trajectory", keyframeTrajectory()},
+        ChildProcess::Output::kFile, logPath());
+  }
 
-  LcmNode node(url);
-  std::vector<slam_pose_t> poses;
-  std::vector<keyframe_t> kfs;
-  bool heartbeat = false;
-  node.subscribe<slam_pose_t>("SLAM_POSE",
-                              [&](const slam_pose_t& m, const ReceivedInfo&) { poses.push_back(m); });
-  node.subscribe<keyframe_t>("SLAM_KEYFRAME",
-                             [&](const keyframe_t& m, const ReceivedInfo&) { kfs.push_back(m); });
-  node.subscribe<process_status_t>("PROCESS_STATUS", [&](const process_status_t& m, const ReceivedInfo&) {
-    heartbeat = heartbeat || m.name == "bmp-tracker";
-  });
-  auto pumpUntil = [&](const std::function<bool()>& done, double timeout_s) {
+  std::string trajectory() const { return (dir_ / "trajectory.txt").string(); }
+  std::string keyframeTrajectory() const { return (dir_ / "keyframes.txt").string(); }
+  std::string logPath() const { return (dir_ / "bmp-tracker.log").string(); }
+  ChildProcess& child() { return *child_; }
+
+  bool pumpUntil(const std::function<bool()>& done, double timeout_s) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (!done() && std::chrono::steady_clock::now() < end) node.handle(20);
+    while (!done() && std::chrono::steady_clock::now() < end) node_.handle(20);
     return done();
-  };
-  ChildProcess child({test::binPath("bmp-tracker"), "--config", test::sourceDir() + "/config/tracker.yaml",
-                      "--lcm-url", url, "--trajectory", trajectory, "--keyframe-trajectory", keyframes},
-                     ChildProcess::Output::kFile, log_path);
-  ASSERT_TRUE(pumpUntil([&] { return heartbeat || !child.running(); }, 30.0))
-      << "no heartbeat; log " << log_path;
-  ASSERT_TRUE(child.running()) << "bmp-tracker exited; log " << log_path;
+  }
+  bool ready() {
+    return pumpUntil([&] { return heartbeat_ || !child_->running(); }, 30.0) && child_->running();
+  }
 
-  const capture::SequenceIndex index = capture::indexSequence(test::bonnDir());
-  const int n = 40;
-  for (int i = 0; i < n; ++i) {
-    const auto& pair = index.frames[i];
+  // Publishes Bonn frame i and waits for its pose, as bmp-capture's lockstep does.
+  bool playAndWait(int i) {
+    const auto& pair = index_.frames[i];
     rgbd_frame_t msg;
     msg.seq = i;
     msg.utime = static_cast<int64_t>(pair.rgb_stamp * 1e6 + 0.5);
@@ -84,10 +93,29 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
     msg.depth_scale = 5000.0;
     msg.color = test::fileImage(pair.rgb_path, PixelFormat::kBgr8);
     msg.depth = test::fileImage(pair.depth_path, PixelFormat::kMono16);
-    node.publish("RGBD_FRAME", msg);
-    // Lockstep, as bmp-capture does it: the next frame once this one is answered.
-    ASSERT_TRUE(pumpUntil([&] { return static_cast<int>(poses.size()) > i; }, 20.0)) << "no pose for " << i;
+    node_.publish("RGBD_FRAME", msg);
+    return pumpUntil([&] { return static_cast<int>(poses.size()) > i; }, 20.0);
   }
+
+  std::vector<slam_pose_t> poses;
+  std::vector<keyframe_t> keyframes;
+
+ private:
+  std::string url_;
+  std::filesystem::path dir_;
+  LcmNode node_;
+  capture::SequenceIndex index_;
+  bool heartbeat_ = false;
+  std::unique_ptr<ChildProcess> child_;
+};
+
+TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
+  TrackerUnderTest t("tracker_process", 0);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  const int n = 40;
+  for (int i = 0; i < n; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  const std::vector<slam_pose_t>& poses = t.poses;
+  const std::vector<keyframe_t>& kfs = t.keyframes;
   for (int i = 0; i < n; ++i) {
     EXPECT_EQ(poses[i].seq, i);
     EXPECT_EQ(static_cast<int>(poses[i].state), static_cast<int>(slam_pose_t::STATE_OK)) << "frame " << i;
@@ -108,10 +136,31 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
   EXPECT_EQ(mask.type(), CV_8UC1);
   EXPECT_EQ(cv::countNonZero(mask), 0);
 
-  EXPECT_EQ(child.stop(20.0), 0) << "log " << log_path;
-  const Trajectory written = readTumTrajectory(trajectory);
+  EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
+  const Trajectory written = readTumTrajectory(t.trajectory());
   EXPECT_EQ(written.size(), static_cast<std::size_t>(n));
-  EXPECT_GE(readTumTrajectory(keyframes).size(), 1u);
+  EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
+  // The clean exit replaced the live file with the optimised trajectory.
+  EXPECT_EQ(test::readFirstLine(t.trajectory()), "# timestamp tx ty tz qx qy qz qw");
+}
+
+// Killed without a chance to write (SIGKILL), the tracker still leaves every pose it had published.
+TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
+  TrackerUnderTest t("tracker_killed", 1);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  const int n = 15;
+  for (int i = 0; i < n; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  t.child().signal(SIGKILL);
+  ASSERT_TRUE(t.child().wait(10).has_value());
+  const Trajectory live = readTumTrajectory(t.trajectory());
+  ASSERT_EQ(live.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    EXPECT_NEAR(live[i].stamp, t.poses[i].utime * 1e-6, 1e-6);
+    EXPECT_LT((live[i].T_world_cam.translation() - fromMsg(t.poses[i].T_world_cam).translation()).norm(),
+              1e-6);
+  }
+  EXPECT_NE(test::readFirstLine(t.trajectory()).find("live poses"), std::string::npos);
+  EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
 }
 
 }  // namespace

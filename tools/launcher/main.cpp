@@ -138,8 +138,14 @@ int launch(const ArgParser& args) {
   while (relay.pump(50)) {
   }
 
-  if (settings.evaluate && !args.flag("no-eval") && worst == 0) {
-    if (evaluate(plan, request, relay, logs) != 0) worst = 1;
+  if (settings.evaluate && !args.flag("no-eval")) {
+    if (worst == 0) {
+      if (evaluate(plan, request, relay, logs) != 0) worst = 1;
+    } else if (fs::exists(plan.trajectory_path)) {
+      // What was tracked before the failure is still worth a look; the run stays failed.
+      log::warn("a process failed: evaluating the poses written up to the failure");
+      evaluate(plan, request, relay, logs);
+    }
   }
   log::info(worst == 0 ? "run finished: " : "run FAILED: ", request.out_dir, " (logs in ", logs.string(),
             ")");

@@ -6,9 +6,20 @@
 
 namespace bmp::tracker {
 
+namespace {
+const char* const kLiveComment = "live poses as tracked; a clean exit replaces them with the optimised ones";
+}  // namespace
+
 TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels,
-                         std::size_t queue_capacity)
-    : ctx_(ctx), config_(std::move(config)), channels_(std::move(channels)), capacity_(queue_capacity) {
+                         std::size_t queue_capacity, const TrackerOutputs& outputs)
+    : ctx_(ctx),
+      config_(std::move(config)),
+      channels_(std::move(channels)),
+      capacity_(queue_capacity),
+      outputs_(outputs) {
+  if (!outputs_.trajectory.empty()) live_trajectory_.emplace(outputs_.trajectory, kLiveComment);
+  if (!outputs_.keyframe_trajectory.empty())
+    live_keyframes_.emplace(outputs_.keyframe_trajectory, kLiveComment);
   ctx_.lcm.subscribe<rgbd_frame_t>(channels_.frames, [this](const rgbd_frame_t& msg, const ReceivedInfo&) {
     ctx_.status.received();
     if (pending_.size() >= capacity_) {  // bounded: the oldest waiting frame gives way
@@ -65,6 +76,10 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
 
+  // On disk before it is announced: whoever saw the pose finds it in the file even if we are killed now.
+  if (live_trajectory_ && r.ok()) live_trajectory_->append({r.stamp, r.T_world_cam});
+  if (live_keyframes_ && r.new_keyframe)
+    live_keyframes_->append({r.new_keyframe->stamp, r.new_keyframe->T_world_cam});
   ctx_.lcm.publish(channels_.pose, toPoseMessage(msg, r));
   ctx_.status.published();
   if (r.new_keyframe) {
@@ -77,6 +92,25 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
     ctx_.status.published();
   }
   ctx_.status.processed();
+}
+
+void TrackerNode::writeTrajectories() {
+  if (!tracker_) {
+    log::warn("no frame received; the trajectory files hold no pose");
+    return;
+  }
+  live_trajectory_.reset();
+  live_keyframes_.reset();
+  if (!outputs_.trajectory.empty()) {
+    const Trajectory t = tracker_->trajectory();
+    writeTumTrajectory(outputs_.trajectory, t);
+    log::info("trajectory (", t.size(), " poses) written to ", outputs_.trajectory);
+  }
+  if (!outputs_.keyframe_trajectory.empty()) {
+    const Trajectory t = tracker_->keyFrameTrajectory();
+    writeTumTrajectory(outputs_.keyframe_trajectory, t);
+    log::info("keyframe trajectory (", t.size(), " poses) written to ", outputs_.keyframe_trajectory);
+  }
 }
 
 }  // namespace bmp::tracker

@@ -1,5 +1,6 @@
 #pragma once
 // Trajectories in the TUM RGB-D format: "timestamp tx ty tz qx qy qz qw" per line, '#' comments.
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,7 +28,20 @@ bool normalizeTumLine(std::string& line);
 // file and line for a malformed line; the result is sorted by time.
 Trajectory readTumTrajectory(const std::string& path);
 Trajectory parseTumTrajectory(const std::string& text, const std::string& origin);
+// Replaces the file whole (written beside it, then renamed), so it is never seen half written.
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory);
 std::string formatTumLine(const StampedPose& pose);
+
+// A trajectory written pose by pose as it is known, each line flushed: what a killed process leaves behind.
+class TumTrajectoryStream {
+ public:
+  TumTrajectoryStream(const std::string& path, const std::string& comment);
+  void append(const StampedPose& pose);
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
 
 }  // namespace bmp
