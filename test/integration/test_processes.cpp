@@ -50,6 +50,18 @@ TEST(Processes, EveryBinaryAnswersHelp) {
   EXPECT_GE(checked, 10);
 }
 
+// lcm-spy decodes a channel only with its type's class on the classpath: every struct of lcmtypes/ must be in
+// the generated jar, and the jars tools/spy puts beside it installed.
+TEST(Processes, SpyHasEveryMessageType) {
+  const Outcome o = runCommand("spy_check", {"/usr/bin/env", "BMP_BUILD_DIR=" + test::binaryDir(),
+                                             test::sourceDir() + "/tools/spy", "--check"});
+  EXPECT_EQ(o.status, 0) << o.output;
+  for (const char* type : {"rgbd_frame_t", "detections_t", "slam_pose_t", "keyframe_t", "keyframe_poses_t",
+                           "octomap_t", "occupancy_grid_t", "point_cloud_t", "process_status_t"})
+    EXPECT_NE(o.output.find(std::string("ok       bmp.") + type), std::string::npos) << type << "\n"
+                                                                                     << o.output;
+}
+
 TEST(Processes, UnknownConfigKeyIsRefusedWithFileAndKey) {
   const fs::path dir = test::scratchDir("bad_config");
   std::ofstream(dir / "capture.yaml") << "capture:\n  mode: fast\n  sped: 2.0\n";
