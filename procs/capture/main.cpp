@@ -124,6 +124,11 @@ int run(ProcessContext& ctx) {
       if (!name.empty()) options.ack_channels.push_back(name);
   }
   options.mode = parseRateMode(overridden(ctx.args, "mode", cfg.get<std::string>("mode", "realtime")));
+  // Without an answer to wait for, lockstep would silently play as fast as it can and consumers would drop.
+  if (options.mode == RateMode::kLockstep && options.ack_channels.empty())
+    throw ConfigError(cfg.origin() +
+                      ": mode lockstep needs at least one answer channel (capture.ack_channels "
+                      "or --ack-channels)");
   const double speed = cfg.get<double>("speed", options.speed);
   options.speed = ctx.args.given("speed") ? ctx.args.number("speed") : speed;
   options.lockstep_timeout_s = cfg.get<double>("lockstep_timeout_s", options.lockstep_timeout_s);

@@ -10,6 +10,7 @@ namespace bmp::tracker {
 bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options) {
   if (static_cast<int>(mp.observations.size()) < options.mature_observations) return false;
   if (options.mature_span_s <= 0.0) return true;
+  if (mp.observations.empty()) return false;  // a temporary point spans no time
   // Observations are ordered by keyframe id, so by time: the first and the last bound the span.
   return mp.observations.rbegin()->first->stamp - mp.observations.begin()->first->stamp >=
          options.mature_span_s;

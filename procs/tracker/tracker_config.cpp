@@ -77,6 +77,7 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
         "must be in (0, 1]");
   check(cfg.pose.rounds >= 1, p, "rounds", "must be at least 1");
   check(cfg.pose.mature_span_s >= 0.0, p, "mature_span_s", "must not be negative");
+  check(cfg.pose.mature_observations >= 0, p, "mature_observations", "must not be negative");
 
   const Config k = section.section("keyframes");
   read(k, "max_frames", cfg.keyframes.max_frames);

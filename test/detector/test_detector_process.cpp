@@ -20,6 +20,7 @@
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "file_image.hpp"
+#include "lcm_url.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
@@ -71,9 +72,8 @@ rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
 // One bmp-detector child on a test-unique LCM port, and what it publishes.
 class DetectorProcess : public ::testing::Test {
  protected:
-  void start(const std::string& mode, int port_offset) {
-    const int port = 17000 + static_cast<int>(getpid() % 20000) + port_offset;
-    const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+  void start(const std::string& mode, int slot) {
+    const std::string url = test::uniqueLcmUrl(slot);
     log_path_ = (test::scratchDir("detector_process_" + mode) / "bmp-detector.log").string();
     node_ = std::make_unique<LcmNode>(url);
     node_->subscribe<detections_t>("DETECTIONS", [this](const detections_t& msg, const ReceivedInfo&) {
@@ -209,8 +209,7 @@ TEST(DetectorProcessStartUp, MissingModelIsAConfigurationErrorBeforeAnyFrame) {
   std::ofstream(config) << "model:\n  path: " << (dir / "absent.onnx").string()
                         << "\ndynamic_classes: " << test::sourceDir() << "/config/dynamic_classes.yaml\n";
   const std::string log_path = (dir / "bmp-detector.log").string();
-  ChildProcess child({test::binPath("bmp-detector"), "--config", config, "--lcm-url",
-                      "udpm://239.255.76.67:" + std::to_string(37000 + getpid() % 20000) + "?ttl=0"},
+  ChildProcess child({test::binPath("bmp-detector"), "--config", config, "--lcm-url", test::uniqueLcmUrl(15)},
                      ChildProcess::Output::kFile, log_path);
   EXPECT_EQ(child.wait(30.0), 2);
   std::ifstream in(log_path);

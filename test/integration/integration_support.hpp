@@ -7,15 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "lcm_url.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::test {
-
-// A multicast URL on a port unique to this test process and slot, so parallel tests never hear each other.
-inline std::string uniqueLcmUrl(int slot) {
-  const int port = 20000 + static_cast<int>(::getpid() % 2000) * 8 + slot;
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-}
 
 struct ReportLine {
   long long seq = 0, utime = 0, depth_utime = 0, color_bytes = 0, depth_bytes = 0;

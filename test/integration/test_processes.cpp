@@ -85,6 +85,11 @@ TEST(Processes, MissingDatasetAndBadOptionsAreClearErrors) {
   const Outcome unknown = runCommand("unknown_option", {binPath("bmp-capture"), "--frobnicate"});
   EXPECT_EQ(unknown.status, 2);
   EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
+  // Lockstep with nothing to wait for would play as fast as it can: refused before any frame.
+  const Outcome no_ack = runCommand("lockstep_no_ack", {binPath("bmp-capture"), "--mode", "lockstep",
+                                                        "--ack-channels", "", "--lcm-url", "memq://"});
+  EXPECT_EQ(no_ack.status, 2);
+  EXPECT_NE(no_ack.output.find("needs at least one answer channel"), std::string::npos) << no_ack.output;
 }
 
 // A killed consumer must not take the data with it: capture in realtime mode finishes on its own.

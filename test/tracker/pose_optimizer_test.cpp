@@ -97,6 +97,15 @@ TEST(TrackerPoseOptimizer, PointMaturesByKeyframesAndTimeSpan) {
   options.mature_span_s = 0.0;
   mp.observations.erase(kfs[3].get());
   EXPECT_TRUE(isMature(mp, options));  // span check off: three keyframes are enough
+
+  // A temporary point (no keyframe saw it) is never mature, however the rule is set.
+  const MapPoint temporary(-1, Eigen::Vector3d(0, 0, 2), cv::Mat::zeros(1, 32, CV_8U), -1);
+  for (const int min_kfs : {0, 3})
+    for (const double span : {0.0, 1.0}) {
+      options.mature_observations = min_kfs;
+      options.mature_span_s = span;
+      EXPECT_EQ(isMature(temporary, options), min_kfs == 0 && span == 0.0) << min_kfs << " " << span;
+    }
 }
 
 }  // namespace

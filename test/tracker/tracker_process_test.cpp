@@ -24,6 +24,7 @@
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/tum_sequence.hpp"
 #include "file_image.hpp"
+#include "lcm_url.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
@@ -45,10 +46,8 @@ camera_t bonnCamera() {
 // A bmp-tracker child on a test-unique udpm URL, and the test's own LCM node that feeds and watches it.
 class TrackerUnderTest {
  public:
-  explicit TrackerUnderTest(const std::string& name, int port_offset)
-      : url_("udpm://239.255.76.67:" +
-             std::to_string(23000 + port_offset + static_cast<int>(getpid() % 20000)) +
-             "?ttl=0&recv_buf_size=4194304"),
+  explicit TrackerUnderTest(const std::string& name, int slot)
+      : url_(test::uniqueLcmUrl(slot)),
         dir_(test::scratchDir(name)),
         node_(url_),
         index_(capture::indexSequence(test::bonnDir())) {
