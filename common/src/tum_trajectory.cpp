@@ -1,8 +1,11 @@
 #include "bmp/common/tum_trajectory.hpp"
 
+#include "bmp/common/atomic_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -66,25 +69,32 @@ std::string formatTumLine(const StampedPose& pose) {
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
-  // Written beside and renamed over: a reader (or a kill) never sees half a file, and whatever was at the
-  // path before, such as a live trajectory, stays until the whole new one is there.
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw TrajectoryError(path + ": cannot write trajectory file");
-    out << "# timestamp tx ty tz qx qy qz qw\n";
-    for (const auto& pose : trajectory) out << formatTumLine(pose) << "\n";
-    out.flush();
-    if (!out) throw TrajectoryError(path + ": write failed");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw TrajectoryError(path + ": cannot replace the file");
+  // Whatever was at the path before, such as a live trajectory, stays until the whole new one is there.
+  std::string text = "# timestamp tx ty tz qx qy qz qw\n";
+  for (const auto& pose : trajectory) text += formatTumLine(pose) + "\n";
+  try {
+    writeFileAtomically(path, text);
+  } catch (const FileWriteError& e) {
+    throw TrajectoryError(e.what());
   }
 }
 
+namespace {
+
+std::string keepPrevious(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec) || std::filesystem::file_size(path, ec) == 0) return "";
+  const std::string previous = path + ".prev";
+  std::filesystem::rename(path, previous, ec);
+  if (ec)
+    throw TrajectoryError(path + ": cannot keep the previous file as " + previous + ": " + ec.message());
+  return previous;
+}
+
+}  // namespace
+
 TumTrajectoryStream::TumTrajectoryStream(const std::string& path, const std::string& comment)
-    : path_(path), out_(path) {
+    : path_(path), previous_(keepPrevious(path)), out_(path) {
   if (!out_) throw TrajectoryError(path + ": cannot write trajectory file");
   if (!comment.empty()) out_ << "# " << comment << "\n";
   out_ << "# timestamp tx ty tz qx qy qz qw" << std::endl;

@@ -48,7 +48,39 @@ TEST(TumTrajectory, StreamIsReadableAfterEachPoseAndFinalWriteReplacesIt) {
   const Trajectory final_poses = readTumTrajectory(path);
   ASSERT_EQ(final_poses.size(), 1u);
   EXPECT_EQ(final_poses[0].stamp, 20.0);
-  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+// A restarted writer does not wipe what a killed one left: the old file becomes <path>.prev.
+TEST(TumTrajectory, StreamKeepsAnEarlierFileAsPrev) {
+  const auto dir = test::scratchDir("tum_stream_prev");
+  const std::string path = (dir / "t.txt").string();
+  {
+    TumTrajectoryStream first(path, "");
+    first.append({1.0, SE3::Identity()});
+    first.append({2.0, SE3::Identity()});
+    EXPECT_TRUE(first.previous().empty());
+  }
+  TumTrajectoryStream second(path, "");
+  EXPECT_EQ(second.previous(), path + ".prev");
+  EXPECT_EQ(readTumTrajectory(path + ".prev").size(), 2u);
+  EXPECT_TRUE(readTumTrajectory(path).empty());
+}
+
+// The final write leaves no temporary behind and a file others can read.
+TEST(TumTrajectory, FinalWriteLeavesOnlyTheFile) {
+  const auto dir = test::scratchDir("tum_final");
+  const std::string path = (dir / "t.txt").string();
+  writeTumTrajectory(path, {{1.0, SE3::Identity()}});
+  writeTumTrajectory(path, {{1.0, SE3::Identity()}, {2.0, SE3::Identity()}});
+  EXPECT_EQ(readTumTrajectory(path).size(), 2u);
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "t.txt");
+  }
+  EXPECT_EQ(files, 1);
+  const auto perms = std::filesystem::status(path).permissions();
+  EXPECT_NE(perms & std::filesystem::perms::others_read, std::filesystem::perms::none);
 }
 
 TEST(TumTrajectory, UnwritablePathsAreErrorsNamingThem) {

@@ -96,6 +96,8 @@ TEST(DetectionsMessage, MalformedMessagesAreRefusedNamingFrameAndReason) {
       {"outside the 640x480 image", [](detections_t& m) { m.detections[0].y = 400.0f; }},
       {"outside [0, 1]", [](detections_t& m) { m.detections[1].score = 1.5f; }},
       {"image size 0x480", [](detections_t& m) { m.image_width = 0; }},
+      {"class 80 is not a COCO index", [](detections_t& m) { m.detections[1].class_id = 80; }},
+      {"class -1 is not a COCO index", [](detections_t& m) { m.detections[0].class_id = -1; }},
   };
   for (const Case& c : cases) {
     detections_t bad = good;

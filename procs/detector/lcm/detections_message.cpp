@@ -34,6 +34,8 @@ detections_t toDetectionsMessage(const FrameResult& result, const std::string& m
 
 namespace {
 
+const int kCocoClasses = 80;  // detection_t.class_id is a COCO index
+
 void check(bool ok, const detections_t& msg, const std::string& what) {
   if (!ok) throw DetectionsMessageError("detections for frame seq " + std::to_string(msg.seq) + ": " + what);
 }
@@ -65,6 +67,8 @@ FrameDetections fromDetectionsMessage(const detections_t& msg) {
           msg,
           which + ": outside the " + std::to_string(msg.image_width) + "x" +
               std::to_string(msg.image_height) + " image");
+    check(b.class_id >= 0 && b.class_id < kCocoClasses, msg,
+          which + ": class " + std::to_string(b.class_id) + " is not a COCO index (0..79)");
     check(std::isfinite(b.score) && b.score >= 0.0f && b.score <= 1.0f, msg,
           which + ": score " + std::to_string(b.score) + " outside [0, 1]");
     Detection d;

@@ -33,14 +33,18 @@ void writeTumTrajectory(const std::string& path, const Trajectory& trajectory);
 std::string formatTumLine(const StampedPose& pose);
 
 // A trajectory written pose by pose as it is known, each line flushed: what a killed process leaves behind.
+// A non-empty file already at the path (say, a killed run's poses) is kept as <path>.prev, not truncated.
 class TumTrajectoryStream {
  public:
   TumTrajectoryStream(const std::string& path, const std::string& comment);
   void append(const StampedPose& pose);
   const std::string& path() const { return path_; }
+  // Where the file found at the path went ("" when there was none).
+  const std::string& previous() const { return previous_; }
 
  private:
   std::string path_;
+  std::string previous_;
   std::ofstream out_;
 };
 
