@@ -78,6 +78,16 @@ int run(bmp::ProcessContext& ctx) {
   bmp::log::info("model ", detector.modelName(), " (", settings.detector.modelSpec().path, ") ready; mode ",
                  toString(settings.mode), ", ", frames_channel, " -> ", detections_channel);
 
+  const std::string model_name = detector.modelName();
+  // A frame that cannot be processed is still answered (no boxes, the reason), so lockstep never waits in
+  // vain.
+  const auto answerSkipped = [&](const FrameJob& job, const std::string& reason) {
+    FrameResult skipped;
+    skipped.seq = job.seq;
+    skipped.utime = job.utime;
+    skipped.error = reason;
+    ctx.lcm.publish(detections_channel, toDetectionsMessage(skipped, model_name));
+  };
   Wakeup wakeup;
   DetectionWorker worker(detector, settings.mode, static_cast<std::size_t>(settings.queue_capacity),
                          [&wakeup] { wakeup.notify(); });
@@ -95,13 +105,13 @@ int run(bmp::ProcessContext& ctx) {
           bmp::log::warn(warning);
           ctx.status.malformed();
           ctx.status.setMessage(warning);
+          answerSkipped(job, std::string("colour image: ") + e.what());
           return;
         }
         ctx.status.dropped(static_cast<int64_t>(worker.submit(std::move(job))));
       });
   ctx.status.tick(true);  // the first heartbeat also tells others we are subscribed
 
-  const std::string model_name = detector.modelName();
   bmp::TimingStats frame_times;
   while (!ctx.stop.requested()) {
     pollfd fds[2] = {{ctx.lcm.raw().getFileno(), POLLIN, 0}, {wakeup.fd(), POLLIN, 0}};
@@ -117,6 +127,8 @@ int run(bmp::ProcessContext& ctx) {
         bmp::log::warn(warning);
         ctx.status.malformed();
         ctx.status.setMessage(warning);
+        ctx.lcm.publish(detections_channel,
+                        toDetectionsMessage(result, model_name));  // answered all the same
         continue;
       }
       ctx.lcm.publish(detections_channel, toDetectionsMessage(result, model_name));

@@ -82,6 +82,21 @@ TEST(DetectionsMessage, NoBoxesIsAValidAnswer) {
   EXPECT_EQ(back.seq, 41);
 }
 
+TEST(DetectionsMessage, SkippedFrameIsAnsweredWithItsReasonAndNoBoxes) {
+  FrameResult r = twoBoxes();
+  r.ok = false;
+  r.error = "colour image: not a JPEG";
+  const detections_t msg = overTheWire(toDetectionsMessage(r, "m"));
+  EXPECT_EQ(msg.seq, 41);
+  EXPECT_EQ(msg.skipped, "colour image: not a JPEG");
+  EXPECT_EQ(msg.num_detections, 0);
+  const FrameDetections back = fromDetectionsMessage(msg);
+  EXPECT_EQ(back.skipped, "colour image: not a JPEG");
+  EXPECT_TRUE(back.detections.empty());
+  // Processed frames say nothing was skipped.
+  EXPECT_TRUE(fromDetectionsMessage(toDetectionsMessage(twoBoxes(), "m")).skipped.empty());
+}
+
 // Each way another publisher's message can be wrong is refused, naming the frame and the reason.
 TEST(DetectionsMessage, MalformedMessagesAreRefusedNamingFrameAndReason) {
   const detections_t good = toDetectionsMessage(twoBoxes(), "m");
@@ -96,6 +111,7 @@ TEST(DetectionsMessage, MalformedMessagesAreRefusedNamingFrameAndReason) {
       {"outside the 640x480 image", [](detections_t& m) { m.detections[0].y = 400.0f; }},
       {"outside [0, 1]", [](detections_t& m) { m.detections[1].score = 1.5f; }},
       {"image size 0x480", [](detections_t& m) { m.image_width = 0; }},
+      {"skipped (busy) yet carries boxes", [](detections_t& m) { m.skipped = "busy"; }},
       {"class 80 is not a COCO index", [](detections_t& m) { m.detections[1].class_id = 80; }},
       {"class -1 is not a COCO index", [](detections_t& m) { m.detections[0].class_id = -1; }},
   };

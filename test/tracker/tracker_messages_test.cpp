@@ -62,6 +62,15 @@ TEST(TrackerMessages, PoseAnswersItsFrameWithStateAndCounts) {
   EXPECT_LT((fromMsg(p.T_world_cam).matrix() - r.T_world_cam.matrix()).norm(), 1e-9);
 }
 
+TEST(TrackerMessages, SkippedFrameIsAnsweredWithItsSeq) {
+  const Images im;
+  const slam_pose_t p = toSkippedPoseMessage(frameMessage(im.color, im.depth, true));
+  EXPECT_EQ(p.seq, 12);
+  EXPECT_EQ(p.utime, 1548339829896440);
+  EXPECT_EQ(p.state, +slam_pose_t::STATE_SKIPPED);
+  EXPECT_EQ(p.reference_keyframe_id, -1);
+}
+
 TEST(TrackerMessages, KeyFrameForwardsFileBytesUntouched) {
   const Images im;
   const rgbd_frame_t frame = frameMessage(im.color, im.depth, true);

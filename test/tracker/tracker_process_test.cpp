@@ -1,5 +1,5 @@
-// The real bmp-tracker over LCM: Bonn frames in (lockstep), one SLAM_POSE per frame, keyframes with decodable
-// images, and the TUM trajectories written on SIGINT.
+// The real bmp-tracker over LCM: Bonn frames in (lockstep), one SLAM_POSE per frame (a damaged one answered
+// as skipped), keyframes with decodable images, the TUM trajectories written on SIGINT, and kept on SIGKILL.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -81,7 +81,8 @@ class TrackerUnderTest {
   }
 
   // Publishes Bonn frame i and waits for its pose, as bmp-capture's lockstep does.
-  bool playAndWait(int i) {
+  // damage: replaces the depth with bytes that are no PNG, as another publisher might send.
+  bool playAndWait(int i, bool damage = false) {
     const auto& pair = index_.frames[i];
     rgbd_frame_t msg;
     msg.seq = i;
@@ -92,6 +93,7 @@ class TrackerUnderTest {
     msg.depth_scale = 5000.0;
     msg.color = test::fileImage(pair.rgb_path, PixelFormat::kBgr8);
     msg.depth = test::fileImage(pair.depth_path, PixelFormat::kMono16);
+    if (damage) msg.depth.data.assign(msg.depth.data.size(), 0x5a);
     node_.publish("RGBD_FRAME", msg);
     return pumpUntil([&] { return static_cast<int>(poses.size()) > i; }, 20.0);
   }
@@ -112,11 +114,16 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
   TrackerUnderTest t("tracker_process", 0);
   ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
   const int n = 40;
-  for (int i = 0; i < n; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  const int damaged = 20;  // undecodable depth: answered as skipped, tracking goes on
+  for (int i = 0; i < n; ++i) ASSERT_TRUE(t.playAndWait(i, i == damaged)) << "no pose for " << i;
   const std::vector<slam_pose_t>& poses = t.poses;
   const std::vector<keyframe_t>& kfs = t.keyframes;
+  ASSERT_EQ(poses.size(), static_cast<std::size_t>(n));
+  EXPECT_EQ(poses[damaged].seq, damaged);
+  EXPECT_EQ(static_cast<int>(poses[damaged].state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
   for (int i = 0; i < n; ++i) {
     EXPECT_EQ(poses[i].seq, i);
+    if (i == damaged) continue;
     EXPECT_EQ(static_cast<int>(poses[i].state), static_cast<int>(slam_pose_t::STATE_OK)) << "frame " << i;
     EXPECT_EQ(poses[i].num_keypoints, 1000);
     EXPECT_GT(poses[i].processing_ms, 0.0f);
@@ -137,7 +144,7 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
 
   EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
   const Trajectory written = readTumTrajectory(t.trajectory());
-  EXPECT_EQ(written.size(), static_cast<std::size_t>(n));
+  EXPECT_EQ(written.size(), static_cast<std::size_t>(n - 1));  // every frame but the skipped one
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
   // The clean exit replaced the live file with the optimised trajectory.
   EXPECT_EQ(test::readFirstLine(t.trajectory()), "# timestamp tx ty tz qx qy qz qw");

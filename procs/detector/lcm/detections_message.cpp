@@ -16,6 +16,11 @@ detections_t toDetectionsMessage(const FrameResult& result, const std::string& m
   msg.inference_ms = static_cast<float>(result.total_ms);
   msg.image_width = result.width;
   msg.image_height = result.height;
+  msg.skipped = result.ok ? "" : (result.error.empty() ? "not processed" : result.error);
+  if (!result.ok) {
+    msg.num_detections = 0;
+    return msg;
+  }
   for (const auto& d : result.detections) {
     detection_t box;
     box.x = d.box.x;
@@ -43,8 +48,6 @@ void check(bool ok, const detections_t& msg, const std::string& what) {
 }  // namespace
 
 FrameDetections fromDetectionsMessage(const detections_t& msg) {
-  check(msg.image_width > 0 && msg.image_height > 0, msg,
-        "image size " + std::to_string(msg.image_width) + "x" + std::to_string(msg.image_height));
   FrameDetections out;
   out.seq = msg.seq;
   out.utime = msg.utime;
@@ -52,6 +55,13 @@ FrameDetections fromDetectionsMessage(const detections_t& msg) {
   out.width = msg.image_width;
   out.height = msg.image_height;
   out.inference_ms = msg.inference_ms;
+  out.skipped = msg.skipped;
+  if (!out.skipped.empty()) {
+    check(msg.detections.empty(), msg, "skipped (" + msg.skipped + ") yet carries boxes");
+    return out;
+  }
+  check(msg.image_width > 0 && msg.image_height > 0, msg,
+        "image size " + std::to_string(msg.image_width) + "x" + std::to_string(msg.image_height));
   // Boxes are clipped to the image by the detector; a pixel of slack allows for float rounding.
   const float slack = 1.0f;
   for (std::size_t i = 0; i < msg.detections.size(); ++i) {

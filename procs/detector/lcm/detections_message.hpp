@@ -25,9 +25,11 @@ struct FrameDetections {
   int width = 0;  // the colour image the boxes refer to
   int height = 0;
   double inference_ms = 0.0;
+  std::string skipped;  // why the detector could not process the frame ("" when it did; no boxes then)
   std::vector<Detection> detections;
 };
 
+// A result that is not ok becomes the answer for a skipped frame: its error as the reason, no boxes.
 detections_t toDetectionsMessage(const FrameResult& result, const std::string& model);
 
 // Throws DetectionsMessageError for an unknown level, a non-finite or empty box, a box outside the image,

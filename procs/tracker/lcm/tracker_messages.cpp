@@ -34,6 +34,16 @@ slam_pose_t toPoseMessage(const rgbd_frame_t& frame, const TrackResult& r) {
   return out;
 }
 
+slam_pose_t toSkippedPoseMessage(const rgbd_frame_t& frame) {
+  slam_pose_t out{};
+  out.utime = frame.utime;
+  out.seq = frame.seq;
+  out.T_world_cam = toMsg(SE3::Identity());
+  out.state = slam_pose_t::STATE_SKIPPED;
+  out.reference_keyframe_id = -1;
+  return out;
+}
+
 keyframe_t toKeyFrameMessage(const rgbd_frame_t& frame, const cv::Mat& color, const cv::Mat& depth,
                              const KeyFramePose& kf, const cv::Mat& dynamic_mask) {
   keyframe_t out;

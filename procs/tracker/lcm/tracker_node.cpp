@@ -59,7 +59,9 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
   } catch (const ImageError& e) {
     ctx_.status.malformed();
     ctx_.status.setMessage(std::string("frame ") + std::to_string(msg.seq) + ": " + e.what());
-    log::warn("frame ", msg.seq, ": ", e.what());
+    log::warn("frame ", msg.seq, ": ", e.what(), "; skipped");
+    ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg));  // answered all the same
+    ctx_.status.published();
     return;
   }
   if (!tracker_) {
