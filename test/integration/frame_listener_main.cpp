@@ -1,8 +1,12 @@
 // bmp-test-listener: a consumer process for integration tests. Receives RGBD_FRAME, checks that both images
-// decode, optionally answers each frame on SLAM_POSE (as the tracker does, for lockstep), and writes one
-// report line per frame: "seq utime depth_utime color_bytes depth_bytes decoded(0/1)".
+// decode, optionally answers each frame on SLAM_POSE (as the tracker does, for lockstep) and/or DETECTIONS
+// (as the detector does), at once or after a delay, and writes one report line per frame: "seq utime
+// depth_utime color_bytes depth_bytes decoded(0/1)".
+#include <chrono>
 #include <fstream>
+#include <thread>
 
+#include <bmp/detections_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 #include <bmp/slam_pose_t.hpp>
 
@@ -19,6 +23,9 @@ using namespace bmp;
 void addOptions(ArgParser& args) {
   args.addOption("report", "FILE", "where the per-frame report goes");
   args.addFlag("ack", "answer every frame with a slam_pose_t on SLAM_POSE carrying its seq");
+  args.addFlag("ack-detections",
+               "answer every frame with a detections_t on DETECTIONS, as the detector does");
+  args.addOption("ack-delay-ms", "MS", "wait this long before answering (a slow consumer)", "0");
   args.addFlag("decode", "decode both images of every frame");
   args.addOption("expect", "N", "exit once N frames arrived (0 = run until SIGINT)", "0");
 }
@@ -28,6 +35,8 @@ int run(ProcessContext& ctx) {
   std::ofstream report(ctx.args.value("report"));
   if (!report) throw std::runtime_error(ctx.args.value("report") + ": cannot write report");
   const bool ack = ctx.args.flag("ack");
+  const bool ack_detections = ctx.args.flag("ack-detections");
+  const auto ack_delay = std::chrono::milliseconds(ctx.args.integer("ack-delay-ms"));
   const bool decode = ctx.args.flag("decode");
   const long long expect = ctx.args.integer("expect");
   long long received = 0;
@@ -46,6 +55,14 @@ int run(ProcessContext& ctx) {
            << msg.depth.size << " " << (decoded ? 1 : 0) << "\n";
     ++received;
     ctx.status.received();
+    if ((ack || ack_detections) && ack_delay.count() > 0) std::this_thread::sleep_for(ack_delay);
+    if (ack_detections) {
+      detections_t answer{};
+      answer.utime = msg.utime;
+      answer.seq = msg.seq;
+      answer.model = "test";
+      ctx.lcm.publish("DETECTIONS", answer);
+    }
     if (ack) {
       slam_pose_t pose{};
       pose.utime = msg.utime;

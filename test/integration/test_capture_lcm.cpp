@@ -121,5 +121,57 @@ TEST(CaptureOverLcm, MalformedMessagesOnAckChannelAreSkipped) {
   EXPECT_EQ(test::readReport(report).size(), 120u);
 }
 
+// Lockstep with two answer channels waits for the slower consumer on each frame: a detector-like listener
+// that answers DETECTIONS 30 ms late sets the pace although the tracker-like one answers SLAM_POSE at once.
+TEST(CaptureOverLcm, LockstepWaitsForEveryAnswerChannel) {
+  const fs::path dir = test::scratchDir("lcm_two_acks");
+  const std::string url = test::uniqueLcmUrl(10);
+  const int frames = 60, delay_ms = 30;
+  ChildProcess fast(
+      {binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "fast.txt").string(), "--ack"},
+      ChildProcess::Output::kFile, (dir / "fast.log").string());
+  ChildProcess slow({binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "slow.txt").string(),
+                     "--ack-detections", "--ack-delay-ms", std::to_string(delay_ms)},
+                    ChildProcess::Output::kFile, (dir / "slow.log").string());
+  ChildProcess capture(
+      {binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode", "lockstep", "--end",
+       std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS", "--wait-for", "bmp-test-listener"},
+      ChildProcess::Output::kFile, (dir / "capture.log").string());
+  ASSERT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  fast.stop(5.0);
+  slow.stop(5.0);
+  const std::string log = test::readText((dir / "capture.log").string());
+  EXPECT_EQ(test::readReport((dir / "fast.txt").string()).size(), static_cast<std::size_t>(frames));
+  EXPECT_EQ(test::readReport((dir / "slow.txt").string()).size(), static_cast<std::size_t>(frames));
+  EXPECT_EQ(log.find("lockstep timeouts"), std::string::npos) << log;
+  // Waiting for the slow answer on every frame takes at least frames x delay; without it, a few ms a frame.
+  const auto at = log.find("frames in ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const double seconds = std::stod(log.substr(at + 10));
+  EXPECT_GE(seconds, 0.9 * frames * delay_ms / 1000.0) << log;
+}
+
+// A channel that never answers costs one timeout per frame, and the warning names it.
+TEST(CaptureOverLcm, LockstepTimeoutNamesTheSilentChannel) {
+  const fs::path dir = test::scratchDir("lcm_silent_ack");
+  const std::string url = test::uniqueLcmUrl(11);
+  const std::string config = (dir / "capture.yaml").string();
+  std::ofstream(config) << "capture:\n  lockstep_timeout_s: 0.3\n";
+  ChildProcess listener(
+      {binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "r.txt").string(), "--ack"},
+      ChildProcess::Output::kFile, (dir / "listener.log").string());
+  ChildProcess capture(
+      {binPath("bmp-capture"), "--config", config, "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
+       "lockstep", "--end", "3", "--ack-channels", "SLAM_POSE,DETECTIONS", "--wait-for", "bmp-test-listener"},
+      ChildProcess::Output::kFile, (dir / "capture.log").string());
+  ASSERT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
+  listener.stop(5.0);
+  const std::string log = test::readText((dir / "capture.log").string());
+  EXPECT_NE(log.find("no answer on DETECTIONS for frame 0"), std::string::npos) << log;
+  EXPECT_EQ(log.find("no answer on SLAM_POSE"), std::string::npos) << log;
+  EXPECT_NE(log.find("lockstep timeouts 3"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace bmp
