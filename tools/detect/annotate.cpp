@@ -34,8 +34,10 @@ void drawDetections(cv::Mat& bgr, const std::vector<detector::Detection>& detect
     int baseline = 0;
     const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, font_scale, 1, &baseline);
     const int top = box.y - size.height - baseline >= 0 ? box.y - size.height - baseline : box.y;
-    cv::rectangle(bgr, cv::Rect(box.x, top, size.width + 2, size.height + baseline), colour, cv::FILLED);
-    cv::putText(bgr, text, {box.x + 1, top + size.height}, cv::FONT_HERSHEY_SIMPLEX, font_scale,
+    // A box at the right edge keeps its whole label: the label moves left into the image.
+    const int left = std::max(0, std::min(box.x, bgr.cols - size.width - 2));
+    cv::rectangle(bgr, cv::Rect(left, top, size.width + 2, size.height + baseline), colour, cv::FILLED);
+    cv::putText(bgr, text, {left + 1, top + size.height}, cv::FONT_HERSHEY_SIMPLEX, font_scale,
                 cv::Scalar::all(255), 1, cv::LINE_AA);
   }
 }
