@@ -88,6 +88,12 @@ std::string formatText(const EvalReport& r) {
       << r.ate_options.offset << " s, scale " << r.ate_options.scale << "): " << r.ate.stats.count
       << " pairs\n";
   statsLines(out, r.ate.stats, "m", 6, 100.0);
+  if (r.body_offset.constant())
+    out << "WARNING: the ground truth's orientations differ from the estimate's camera frame by a constant "
+        << fixed(r.body_offset.angle_deg, 1) << " deg (spread " << fixed(r.body_offset.spread_deg, 1)
+        << " deg over " << r.body_offset.pairs
+        << " pairs): they are not camera orientations (e.g. a motion-capture marker). The ATE (positions) "
+           "is unaffected; the RPE below compares motions in different frames and is not meaningful.\n";
   out << "RPE (evaluate_rpe.py --fixed_delta; delta " << r.rpe_options.delta << " "
       << deltaUnitName(r.rpe_options.unit) << "): " << r.rpe.trans.count << " pairs\n";
   if (r.rpe.trans.count == 0) {
@@ -115,7 +121,12 @@ std::string formatJson(const EvalReport& r) {
       << deltaUnitName(r.rpe_options.unit) << "\", \"offset_s\": " << jsonNumber(r.rpe_options.offset)
       << ", \"scale\": " << jsonNumber(r.rpe_options.scale) << ", \"pairs\": " << r.rpe.trans.count
       << ",\n          \"translation_m\": " << jsonStats(r.rpe.trans)
-      << ",\n          \"rotation_deg\": " << jsonStats(r.rpe.rot_deg) << "}\n";
+      << ",\n          \"rotation_deg\": " << jsonStats(r.rpe.rot_deg)
+      << ",\n          \"meaningful\": " << (r.body_offset.constant() ? "false" : "true") << "},\n";
+  out << "  \"groundtruth_body_offset\": {\"angle_deg\": " << jsonNumber(r.body_offset.angle_deg)
+      << ", \"spread_deg\": " << jsonNumber(r.body_offset.spread_deg)
+      << ", \"pairs\": " << r.body_offset.pairs
+      << ", \"constant\": " << (r.body_offset.constant() ? "true" : "false") << "}\n";
   out << "}\n";
   return out.str();
 }

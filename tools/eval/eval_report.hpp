@@ -4,6 +4,7 @@
 #include <string>
 
 #include "eval/ate.hpp"
+#include "eval/body_offset.hpp"
 #include "eval/rpe.hpp"
 
 namespace bmp::eval {
@@ -18,6 +19,7 @@ struct EvalReport {
   RpeOptions rpe_options;
   AteResult ate;
   RpeResult rpe;
+  BodyOffset body_offset;  // between the estimate's camera frame and the ground truth's orientations
 };
 
 std::string formatText(const EvalReport& report);

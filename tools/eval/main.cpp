@@ -90,6 +90,7 @@ int run(const bmp::ArgParser& args) {
     throw ev::EvalError(report.est_path + " vs " + report.gt_path + ": " + e.what());
   }
   report.rpe = ev::computeRpe(gt, est, report.rpe_options);
+  report.body_offset = ev::measureBodyOffset(gt, est, report.ate, report.ate_options.offset);
 
   std::cout << ev::formatText(report) << std::flush;
   if (args.given("json")) ev::writeTextFile(args.value("json"), ev::formatJson(report));
@@ -108,6 +109,8 @@ int run(const bmp::ArgParser& args) {
     if (ec) throw ev::EvalError(dir.string() + ": cannot create plot directory: " + ec.message());
     std::ostringstream caption;
     caption << "delta " << report.rpe_options.delta << " " << ev::deltaUnitName(report.rpe_options.unit);
+    if (report.body_offset.constant())
+      caption << "; NOT MEANINGFUL: ground-truth orientations are not the camera's";
     const std::string stem = fileSafe(report.label);
     const std::string trajectory_png = (dir / (stem + "_trajectory.png")).string();
     const std::string errors_png = (dir / (stem + "_errors.png")).string();
