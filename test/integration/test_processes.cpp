@@ -163,6 +163,11 @@ TEST(Launcher, FullPipelineOnBonnTracksAndEvaluates) {
   EXPECT_NE(eval.find("\"constant\": true"), std::string::npos) << eval;
   EXPECT_NE(o.output.find("not camera orientations"), std::string::npos) << o.output;
   EXPECT_TRUE(fs::exists(out / "plots"));
+  // The run summary heard every frame's answers, with the processes' own timing.
+  const std::string summary = test::readText((out / "summary.json").string());
+  EXPECT_NE(summary.find("\"tracker\": {\"frames\": 90"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"detector\": {\"frames\": 90, \"skipped\": 0"), std::string::npos) << summary;
+  EXPECT_NE(o.output.find("end to end:"), std::string::npos) << o.output;
   // The detector answered every frame (lockstep runs it in 'every' mode).
   const std::string detector_log = test::readText((out / "logs" / "bmp-detector.log").string());
   EXPECT_NE(detector_log.find("processed 90"), std::string::npos) << detector_log;

@@ -25,6 +25,8 @@ RunSettings runSettingsFromConfig(const Config& c) {
   s.stop_timeout_s = c.get<double>("stop_timeout_s", s.stop_timeout_s);
   s.drain_s = c.get<double>("drain_s", s.drain_s);
   s.evaluate = c.get<bool>("evaluate", s.evaluate);
+  s.pose_channel = c.get<std::string>("pose_channel", s.pose_channel);
+  s.detections_channel = c.get<std::string>("detections_channel", s.detections_channel);
   const Config processes = c.section("processes");
   for (const auto& name : processes.keys())
     s.processes.push_back({name, processes.get<std::vector<std::string>>(name, {})});

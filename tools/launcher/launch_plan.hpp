@@ -30,7 +30,9 @@ struct RunSettings {
   double stop_timeout_s = 15.0;
   double drain_s = 1.0;  // after capture ends, before SIGINT: lets consumers finish
   bool evaluate = true;
-  std::vector<ProcessCommand> processes;  // args from config, before placeholder expansion
+  std::string pose_channel = "SLAM_POSE";         // heard for the run summary
+  std::string detections_channel = "DETECTIONS";  // likewise
+  std::vector<ProcessCommand> processes;          // args from config, before placeholder expansion
   std::vector<std::string> capture_args;
 };
 

@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -16,6 +17,7 @@
 #include "bmp/lcm/process.hpp"
 #include "launcher/launch_plan.hpp"
 #include "launcher/output_relay.hpp"
+#include "launcher/run_monitor.hpp"
 
 namespace {
 
@@ -38,6 +40,12 @@ std::unique_ptr<ChildProcess> start(const ProcessCommand& cmd, const fs::path& l
   for (const auto& a : cmd.argv) line += (line.empty() ? "" : " ") + a;
   log::info("started ", cmd.name, " (pid ", child->pid(), "): ", line);
   return child;
+}
+
+void writeSummaryFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out.flush()) log::warn(path, ": could not write the run summary");
 }
 
 int evaluate(const LaunchPlan& plan, const RunRequest& request, OutputRelay& relay, const fs::path& logs) {
@@ -97,6 +105,8 @@ int launch(const ArgParser& args) {
       throw std::runtime_error(cmd.argv[0] + ": not built (run tools/run, or build it)");
   StopSignal stop;
   OutputRelay relay;
+  // Listening before anything starts, so the summary hears every frame's answer.
+  RunMonitor monitor(request.lcm_url, settings.pose_channel, settings.detections_channel);
   std::vector<Launched> launched;
   for (const auto& cmd : plan.processes) launched.push_back({cmd.name, start(cmd, logs, relay, false)});
   Launched capture{"bmp-capture", start(plan.capture, logs, relay, true)};
@@ -138,6 +148,9 @@ int launch(const ArgParser& args) {
   while (relay.pump(50)) {
   }
 
+  const RunSummary summary = monitor.summary();
+  writeSummaryFile((fs::path(request.out_dir) / "summary.json").string(), formatSummaryJson(summary));
+
   if (settings.evaluate && !args.flag("no-eval")) {
     if (worst == 0) {
       if (evaluate(plan, request, relay, logs) != 0) worst = 1;
@@ -147,6 +160,7 @@ int launch(const ArgParser& args) {
       evaluate(plan, request, relay, logs);
     }
   }
+  std::cout << formatSummaryText(summary) << std::flush;  // last, where the eye lands
   log::info(worst == 0 ? "run finished: " : "run FAILED: ", request.out_dir, " (logs in ", logs.string(),
             ")");
   return worst;
