@@ -8,6 +8,16 @@
 namespace bmp {
 namespace {
 
+TEST(LcmNode, ReceiveBufferLargerThanTheKernelAllowsIsWarned) {
+  const std::string url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+  const std::string w = receiveBufferWarning(url, 212992);  // Debian's default
+  EXPECT_NE(w.find("net.core.rmem_max is 212992"), std::string::npos) << w;
+  EXPECT_NE(w.find("sysctl -w net.core.rmem_max=4194304"), std::string::npos) << w;
+  EXPECT_EQ(receiveBufferWarning(url, 4194304), "");
+  EXPECT_EQ(receiveBufferWarning("udpm://239.255.76.67:7667?ttl=0", 212992), "");  // asks for nothing
+  EXPECT_EQ(receiveBufferWarning("memq://", 1), "");
+}
+
 TEST(LcmNode, TypedRoundTripOverMemq) {
   LcmNode node("memq://");
   std::vector<slam_pose_t> got;

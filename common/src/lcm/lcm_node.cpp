@@ -1,6 +1,7 @@
 #include "bmp/lcm/lcm_node.hpp"
 
 #include <cstdlib>
+#include <fstream>
 
 #include "bmp/common/log.hpp"
 
@@ -12,9 +13,36 @@ std::string resolveLcmUrl(const std::string& command_line_url) {
   return kDefaultLcmUrl;
 }
 
+std::string receiveBufferWarning(const std::string& url, long rmem_max) {
+  if (url.rfind("udpm://", 0) != 0) return "";
+  const std::string key = "recv_buf_size=";
+  const auto at = url.find(key);
+  if (at == std::string::npos) return "";
+  const long wanted = std::strtol(url.c_str() + at + key.size(), nullptr, 10);
+  if (wanted <= 0 || rmem_max <= 0 || wanted <= rmem_max) return "";
+  return "LCM asks for a " + std::to_string(wanted) + "-byte receive buffer but net.core.rmem_max is " +
+         std::to_string(rmem_max) +
+         ": the kernel gives less and large frames may be lost; raise it with "
+         "'sudo sysctl -w net.core.rmem_max=" +
+         std::to_string(wanted) + "' (tools/install-deps does)";
+}
+
+namespace {
+
+long kernelRmemMax() {
+  std::ifstream in("/proc/sys/net/core/rmem_max");
+  long value = 0;
+  return (in >> value) ? value : 0;
+}
+
+}  // namespace
+
 LcmNode::LcmNode(const std::string& url, WarningSink warn) : url_(url), lcm_(url), warn_(std::move(warn)) {
-  if (!lcm_.good()) throw LcmError("cannot open LCM at '" + url + "' (multicast route or URL wrong?)");
+  if (!lcm_.good())
+    throw LcmError("cannot open LCM at '" + url +
+                   "' (URL wrong, or no multicast route: see the README's troubleshooting section)");
   if (!warn_) warn_ = [](const std::string& m) { log::warn(m); };
+  if (const std::string w = receiveBufferWarning(url, kernelRmemMax()); !w.empty()) warn_(w);
 }
 
 // subscribers_ is declared after lcm_, so the handlers go first and lcm::LCM's destructor then frees the

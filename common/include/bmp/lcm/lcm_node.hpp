@@ -19,6 +19,11 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&r
 // --lcm-url if given, else $LCM_DEFAULT_URL, else kDefaultLcmUrl.
 std::string resolveLcmUrl(const std::string& command_line_url);
 
+// The kernel silently caps a socket's receive buffer at net.core.rmem_max: a udpm URL asking for more
+// (recv_buf_size) then gets less, and large frames are lost under load. Returns the warning to give, or ""
+// when the URL asks for nothing more than the kernel allows (or is not udpm).
+std::string receiveBufferWarning(const std::string& url, long rmem_max);
+
 class LcmError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
