@@ -79,14 +79,14 @@ int run(bmp::ProcessContext& ctx) {
                  toString(settings.mode), ", ", frames_channel, " -> ", detections_channel);
 
   const std::string model_name = detector.modelName();
-  // A frame that cannot be processed is still answered (no boxes, the reason), so lockstep never waits in
-  // vain.
-  const auto answerSkipped = [&](const FrameJob& job, const std::string& reason) {
-    FrameResult skipped;
-    skipped.seq = job.seq;
-    skipped.utime = job.utime;
-    skipped.error = reason;
-    ctx.lcm.publish(detections_channel, toDetectionsMessage(skipped, model_name));
+  // A frame that cannot be processed is warned about, counted, and still answered (no boxes, the reason), so
+  // lockstep never waits in vain.
+  const auto skip = [&](const FrameResult& failed) {
+    const std::string warning = "frame seq " + std::to_string(failed.seq) + ": " + failed.error + "; skipped";
+    bmp::log::warn(warning);
+    ctx.status.malformed();
+    ctx.status.setMessage(warning);
+    ctx.lcm.publish(detections_channel, toDetectionsMessage(failed, model_name));
   };
   Wakeup wakeup;
   DetectionWorker worker(detector, settings.mode, static_cast<std::size_t>(settings.queue_capacity),
@@ -100,12 +100,11 @@ int run(bmp::ProcessContext& ctx) {
         try {
           job.color = bmp::fromMsg(msg.color);
         } catch (const bmp::ImageError& e) {
-          const std::string warning =
-              "frame seq " + std::to_string(msg.seq) + ": colour image: " + e.what() + "; skipped";
-          bmp::log::warn(warning);
-          ctx.status.malformed();
-          ctx.status.setMessage(warning);
-          answerSkipped(job, std::string("colour image: ") + e.what());
+          FrameResult failed;
+          failed.seq = msg.seq;
+          failed.utime = msg.utime;
+          failed.error = std::string("colour image: ") + e.what();
+          skip(failed);
           return;
         }
         ctx.status.dropped(static_cast<int64_t>(worker.submit(std::move(job))));
@@ -122,13 +121,7 @@ int run(bmp::ProcessContext& ctx) {
     wakeup.clear();
     for (const auto& result : worker.takeResults()) {
       if (!result.ok) {
-        const std::string warning =
-            "frame seq " + std::to_string(result.seq) + ": " + result.error + "; skipped";
-        bmp::log::warn(warning);
-        ctx.status.malformed();
-        ctx.status.setMessage(warning);
-        ctx.lcm.publish(detections_channel,
-                        toDetectionsMessage(result, model_name));  // answered all the same
+        skip(result);
         continue;
       }
       ctx.lcm.publish(detections_channel, toDetectionsMessage(result, model_name));
