@@ -11,17 +11,22 @@ namespace bmp::tracker {
 
 namespace {
 
+// A keyframe pose from its parameters, re-orthonormalised (many small BA steps must not drift off SO(3)).
+SE3 baPose(const double* pose) {
+  return normalized(poseFromParams(pose));
+}
+
 double chi2Of(const double* pose, const double* p, const BaObservation& o, const PoseCamera& c) {
   PoseObservation po;
   po.p_world = Eigen::Vector3d(p[0], p[1], p[2]);
   po.uv = o.uv;
   po.u_right = o.u_right;
   po.information = o.information;
-  return poseChi2(normalized(poseFromParams(pose)), po, c);
+  return poseChi2(baPose(pose), po, c);
 }
 
 bool behindCamera(const double* pose, const double* p) {
-  return (normalized(poseFromParams(pose)) * Eigen::Vector3d(p[0], p[1], p[2])).z() <= 0.0;
+  return (baPose(pose) * Eigen::Vector3d(p[0], p[1], p[2])).z() <= 0.0;
 }
 
 }  // namespace
@@ -85,7 +90,7 @@ BaSummary solveLocalBa(BaProblem& ba, const PoseCamera& camera, const MappingOpt
   summary.outliers = 0;
   for (const auto& o : ba.observations) summary.outliers += o.outlier;
   for (std::size_t k = 0; k < ba.keyframes.size(); ++k)
-    if (!ba.keyframes[k].fixed) ba.keyframes[k].T_cam_world = normalized(poseFromParams(&poses[6 * k]));
+    if (!ba.keyframes[k].fixed) ba.keyframes[k].T_cam_world = baPose(&poses[6 * k]);
   for (std::size_t i = 0; i < ba.points.size(); ++i)
     ba.points[i].p_world = Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
   return summary;

@@ -38,8 +38,6 @@ class TrackerNode {
 
   // Until a stop is requested, or idle_exit_s (> 0) seconds pass without a frame after the first.
   void run(double idle_exit_s);
-  // The tracker, once the first frame made it (it takes the camera from that frame); else null.
-  Tracker* tracker() { return tracker_.get(); }
   // Replaces the live files with the trajectories after local mapping's corrections; call after run().
   void writeTrajectories();
 
