@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bmp/common/number_format.hpp"
 #include "eval/eval_error.hpp"
 
 namespace bmp::eval {
@@ -12,10 +13,7 @@ namespace bmp::eval {
 namespace {
 
 std::string fixed(double v, int digits) {
-  if (!std::isfinite(v)) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, v);
-  return buffer;
+  return formatFixed(v, digits, "n/a");
 }
 
 // Enough digits to round-trip a double.

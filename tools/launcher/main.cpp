@@ -4,11 +4,11 @@
 
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "bmp/common/arg_parser.hpp"
+#include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/log.hpp"
 #include "bmp/common/timing.hpp"
@@ -43,9 +43,11 @@ std::unique_ptr<ChildProcess> start(const ProcessCommand& cmd, const fs::path& l
 }
 
 void writeSummaryFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out.flush()) log::warn(path, ": could not write the run summary");
+  try {
+    writeFileAtomically(path, text);
+  } catch (const FileWriteError& e) {
+    log::warn(e.what(), " (the run summary)");
+  }
 }
 
 int evaluate(const LaunchPlan& plan, const RunRequest& request, OutputRelay& relay, const fs::path& logs) {

@@ -1,21 +1,19 @@
 #include "launcher/run_monitor.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include <bmp/detections_t.hpp>
 #include <bmp/slam_pose_t.hpp>
+
+#include "bmp/common/number_format.hpp"
 
 namespace bmp::launcher {
 
 namespace {
 
 std::string number(double v, int digits) {
-  if (!std::isfinite(v)) return "null";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, v);
-  return buffer;
+  return formatFixed(v, digits, "null");
 }
 
 std::string jsonTiming(const TimingStats& t) {
@@ -85,8 +83,7 @@ RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
         break;
     }
     if (m.state != slam_pose_t::STATE_SKIPPED) s.tracking_ms.add(m.processing_ms);
-    if (any_pose_) s.frame_period_ms.add(since_last_pose_.elapsedMs());
-    any_pose_ = true;
+    if (s.poses > 1) s.frame_period_ms.add(since_last_pose_.elapsedMs());
     since_last_pose_.restart();
   });
   lcm_.subscribe<detections_t>(detections_channel, [this](const detections_t& m, const ReceivedInfo&) {

@@ -43,7 +43,6 @@ class RunMonitor {
   mutable std::mutex mutex_;
   RunSummary summary_;
   Stopwatch since_last_pose_;
-  bool any_pose_ = false;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
