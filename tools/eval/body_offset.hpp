@@ -1,6 +1,6 @@
 #pragma once
 // Whether the ground truth's orientations are camera orientations. A motion-capture ground truth often gives
-// the pose of a marker body fixed to the camera (Bonn RGB-D Dynamic: about 172 degrees off): positions, and
+// the pose of a marker body fixed to the camera (Bonn RGB-D Dynamic: about 176 degrees off): positions, and
 // so the ATE, are fine, but the RPE then compares motions expressed in different frames. This measures the
 // rotation between the estimate's frame and the ground truth's, pose by pose, after the ATE alignment.
 #include <cstddef>
