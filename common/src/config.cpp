@@ -197,4 +197,8 @@ template std::vector<int> Config::require<std::vector<int>>(const std::string&) 
 template std::vector<double> Config::require<std::vector<double>>(const std::string&) const;
 template std::vector<std::string> Config::require<std::vector<std::string>>(const std::string&) const;
 
+void Config::check(bool ok, const std::string& key, const std::string& rule) const {
+  if (!ok) throw ConfigError(origin() + ": key '" + path(key) + "' " + rule);
+}
+
 }  // namespace bmp

@@ -62,7 +62,7 @@ void waitForProcesses(ProcessContext& ctx, const std::string& names, double time
     if (!name.empty()) pending->insert(name);
   if (pending->empty()) return;
   ctx.lcm.subscribe<process_status_t>(
-      "PROCESS_STATUS",
+      channels::kProcessStatus,
       [pending](const process_status_t& msg, const ReceivedInfo&) { pending->erase(msg.name); });
   log::info("waiting for heartbeats of ", names);
   const Stopwatch watch;

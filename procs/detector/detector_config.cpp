@@ -16,12 +16,6 @@ ModelSpec DetectorConfig::modelSpec() const {
   return spec;
 }
 
-namespace {
-void check(bool ok, const Config& section, const std::string& key, const std::string& rule) {
-  if (!ok) throw ConfigError(section.origin() + ": key '" + section.path(key) + "' " + rule);
-}
-}  // namespace
-
 DetectorConfig detectorConfigFromYaml(const Config& config) {
   DetectorConfig c;
   const Config model = config.section("model");
@@ -35,18 +29,18 @@ DetectorConfig detectorConfigFromYaml(const Config& config) {
   c.darknet_cfg = model.get<std::string>("darknet_cfg", c.darknet_cfg);
   c.class_names = model.get<std::string>("names", c.class_names);
   c.input_size = model.get<int>("input_size", c.input_size);
-  check(c.input_size >= 32 && c.input_size % 32 == 0, model, "input_size",
-        "must be a positive multiple of 32");
+  model.check(c.input_size >= 32 && c.input_size % 32 == 0, "input_size",
+              "must be a positive multiple of 32");
 
   const Config detection = config.section("detection");
   c.conf_threshold = static_cast<float>(detection.get<double>("conf_threshold", c.conf_threshold));
-  check(c.conf_threshold > 0 && c.conf_threshold < 1, detection, "conf_threshold", "must be in (0, 1)");
+  detection.check(c.conf_threshold > 0 && c.conf_threshold < 1, "conf_threshold", "must be in (0, 1)");
   c.nms_threshold = static_cast<float>(detection.get<double>("nms_threshold", c.nms_threshold));
-  check(c.nms_threshold > 0 && c.nms_threshold <= 1, detection, "nms_threshold", "must be in (0, 1]");
+  detection.check(c.nms_threshold > 0 && c.nms_threshold <= 1, "nms_threshold", "must be in (0, 1]");
   c.max_detections = detection.get<int>("max_detections", c.max_detections);
-  check(c.max_detections > 0, detection, "max_detections", "must be positive");
+  detection.check(c.max_detections > 0, "max_detections", "must be positive");
   c.threads = detection.get<int>("threads", c.threads);
-  check(c.threads > 0, detection, "threads", "must be positive");
+  detection.check(c.threads > 0, "threads", "must be positive");
   return c;
 }
 

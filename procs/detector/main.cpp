@@ -49,8 +49,8 @@ Settings readSettings(const bmp::ProcessContext& ctx) {
   std::string mode = process.get<std::string>("mode", "latest");
   s.queue_capacity = process.get<int>("queue_capacity", s.queue_capacity);
   const bmp::Config channels = ctx.config.section("channels");
-  s.frames_channel = channels.get<std::string>("frames", "RGBD_FRAME");
-  s.detections_channel = channels.get<std::string>("detections", "DETECTIONS");
+  s.frames_channel = channels.get<std::string>("frames", bmp::channels::kFrames);
+  s.detections_channel = channels.get<std::string>("detections", bmp::channels::kDetections);
   if (ctx.args.given("mode")) mode = ctx.args.value("mode");
   try {
     s.mode = parseQueueMode(mode);

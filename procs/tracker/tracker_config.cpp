@@ -17,10 +17,6 @@ void readSize(const Config& c, const std::string& key, std::size_t& value) {
   value = static_cast<std::size_t>(v);
 }
 
-void check(bool ok, const Config& c, const std::string& key, const std::string& what) {
-  if (!ok) throw ConfigError(c.origin() + ": key '" + c.path(key) + "' " + what);
-}
-
 }  // namespace
 
 TrackerConfig trackerConfigFromConfig(const Config& section) {
@@ -32,10 +28,10 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(orb, "fast_threshold", cfg.orb.fast_threshold);
   read(orb, "fast_min_threshold", cfg.orb.fast_min_threshold);
   read(orb, "cell_size", cfg.orb.cell_size);
-  check(cfg.orb.num_features >= 50, orb, "num_features", "must be at least 50");
-  check(cfg.orb.num_levels >= 1 && cfg.orb.num_levels <= 12, orb, "num_levels", "must be in 1..12");
-  check(cfg.orb.scale_factor > 1.0 && cfg.orb.scale_factor < 2.0, orb, "scale_factor", "must be in (1, 2)");
-  check(cfg.orb.cell_size >= 10, orb, "cell_size", "must be at least 10");
+  orb.check(cfg.orb.num_features >= 50, "num_features", "must be at least 50");
+  orb.check(cfg.orb.num_levels >= 1 && cfg.orb.num_levels <= 12, "num_levels", "must be in 1..12");
+  orb.check(cfg.orb.scale_factor > 1.0 && cfg.orb.scale_factor < 2.0, "scale_factor", "must be in (1, 2)");
+  orb.check(cfg.orb.cell_size >= 10, "cell_size", "must be at least 10");
 
   const Config t = section.section("tracking");
   auto& tr = cfg.tracking;
@@ -58,10 +54,10 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(t, "min_inliers_after_reloc", tr.min_inliers_after_reloc);
   read(t, "max_local_keyframes", tr.max_local_keyframes);
   read(t, "temporal_points", tr.temporal_points);
-  check(tr.min_depth_m > 0 && tr.max_depth_m > tr.min_depth_m, t, "max_depth_m",
-        "must exceed min_depth_m > 0");
-  check(tr.close_depth_m > 0, t, "close_depth_m", "must be positive");
-  check(tr.virtual_baseline_m > 0, t, "virtual_baseline_m", "must be positive");
+  t.check(tr.min_depth_m > 0 && tr.max_depth_m > tr.min_depth_m, "max_depth_m",
+          "must exceed min_depth_m > 0");
+  t.check(tr.close_depth_m > 0, "close_depth_m", "must be positive");
+  t.check(tr.virtual_baseline_m > 0, "virtual_baseline_m", "must be positive");
 
   const Config p = section.section("pose_optimizer");
   read(p, "rounds", cfg.pose.rounds);
@@ -73,11 +69,11 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(p, "mature_observations", cfg.pose.mature_observations);
   read(p, "mature_span_s", cfg.pose.mature_span_s);
   read(p, "young_point_weight", cfg.pose.young_point_weight);
-  check(cfg.pose.young_point_weight > 0.0 && cfg.pose.young_point_weight <= 1.0, p, "young_point_weight",
-        "must be in (0, 1]");
-  check(cfg.pose.rounds >= 1, p, "rounds", "must be at least 1");
-  check(cfg.pose.mature_span_s >= 0.0, p, "mature_span_s", "must not be negative");
-  check(cfg.pose.mature_observations >= 0, p, "mature_observations", "must not be negative");
+  p.check(cfg.pose.young_point_weight > 0.0 && cfg.pose.young_point_weight <= 1.0, "young_point_weight",
+          "must be in (0, 1]");
+  p.check(cfg.pose.rounds >= 1, "rounds", "must be at least 1");
+  p.check(cfg.pose.mature_span_s >= 0.0, "mature_span_s", "must not be negative");
+  p.check(cfg.pose.mature_observations >= 0, "mature_observations", "must not be negative");
 
   const Config k = section.section("keyframes");
   read(k, "max_frames", cfg.keyframes.max_frames);
@@ -100,7 +96,7 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   read(m, "point_found_ratio", mp.point_found_ratio);
   read(m, "point_min_observations", mp.point_min_observations);
   read(m, "keyframe_redundancy", mp.keyframe_redundancy);
-  check(mp.ba_window >= 1, m, "ba_window", "must be at least 1");
+  m.check(mp.ba_window >= 1, "ba_window", "must be at least 1");
 
   const Config r = section.section("relocalization");
   read(r, "candidates", cfg.reloc.candidates);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bmp/common/config.hpp"
+#include "bmp/lcm/channels.hpp"
 
 namespace bmp::launcher {
 
@@ -30,8 +31,8 @@ struct RunSettings {
   double stop_timeout_s = 15.0;
   double drain_s = 1.0;  // after capture ends, before SIGINT: lets consumers finish
   bool evaluate = true;
-  std::string pose_channel = "SLAM_POSE";         // heard for the run summary
-  std::string detections_channel = "DETECTIONS";  // likewise
+  std::string pose_channel = channels::kPose;       // heard for the run summary
+  std::string detections_channel = channels::kDetections;  // likewise
   std::vector<ProcessCommand> processes;          // args from config, before placeholder expansion
   std::vector<std::string> capture_args;
 };

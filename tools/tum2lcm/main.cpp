@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   args.addOption("dataset", "DIR", "TUM-format folder");
   args.addOption("out", "FILE", "LCM log to write");
   args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else chosen by the folder name");
-  args.addOption("channel", "NAME", "channel of the frames", "RGBD_FRAME");
+  args.addOption("channel", "NAME", "channel of the frames", channels::kFrames);
   args.addOption("start", "N", "first associated frame", "0");
   args.addOption("end", "N", "one past the last frame; -1 = all", "-1");
   args.addOption("every", "K", "every K-th frame", "1");

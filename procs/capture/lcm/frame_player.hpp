@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bmp/common/tum_trajectory.hpp"
+#include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/frame_source.hpp"
 #include "capture/pacer.hpp"
@@ -15,10 +16,10 @@
 namespace bmp::capture {
 
 struct PlayerOptions {
-  std::string channel = "RGBD_FRAME";
+  std::string channel = channels::kFrames;
   // Lockstep: the next frame goes out once every one of these channels has answered this one (a slam_pose_t
   // or detections_t carrying its seq), so the slowest consumer sets the pace and none falls behind.
-  std::vector<std::string> ack_channels{"SLAM_POSE"};
+  std::vector<std::string> ack_channels{channels::kPose};
   RateMode mode = RateMode::kRealtime;
   double speed = 1.0;
   double lockstep_timeout_s = 5.0;

@@ -17,10 +17,10 @@
 namespace bmp::tracker {
 
 struct TrackerChannels {
-  std::string frames = "RGBD_FRAME";
-  std::string pose = "SLAM_POSE";
-  std::string keyframe = "SLAM_KEYFRAME";
-  std::string keyframe_poses = "SLAM_KEYFRAME_POSES";
+  std::string frames = channels::kFrames;
+  std::string pose = channels::kPose;
+  std::string keyframe = channels::kKeyframe;
+  std::string keyframe_poses = channels::kKeyframePoses;
 };
 
 // Where the trajectories go (empty: not written). Each is written pose by pose while tracking, so a killed

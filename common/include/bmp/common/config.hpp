@@ -47,6 +47,9 @@ class Config {
   std::vector<std::string> effectiveValues() const;
   const std::string& origin() const;
   std::string path(const std::string& key) const;  // full dotted key path, for messages
+  // The one validation helper for every configuration: throws ConfigError "<file>: key 'a.b' <rule>"
+  // unless ok, e.g. check(x > 0, "fx", "must be positive").
+  void check(bool ok, const std::string& key, const std::string& rule) const;
 
  private:
   struct State;

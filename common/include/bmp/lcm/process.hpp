@@ -10,6 +10,7 @@
 
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/config.hpp"
+#include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 
 namespace bmp {
@@ -29,7 +30,7 @@ class StopSignal {
 // Counters and a once-a-second PROCESS_STATUS heartbeat.
 class StatusReporter {
  public:
-  StatusReporter(LcmNode& lcm, std::string name, std::string channel = "PROCESS_STATUS");
+  StatusReporter(LcmNode& lcm, std::string name, std::string channel = channels::kProcessStatus);
   void received(int64_t n = 1) { received_ += n; }
   void processed(int64_t n = 1) { processed_ += n; }
   void dropped(int64_t n = 1) { dropped_ += n; }
