@@ -58,6 +58,31 @@ TEST(LcmNode, MalformedMessageIsCountedAndNamed) {
   EXPECT_EQ(calls, 1);
 }
 
+// A handler that throws (a bug, or a check deeper in the process) must not end the process through LCM's C
+// dispatch: the message is counted as malformed with the reason, and the next message is handled.
+TEST(LcmNode, HandlerExceptionIsCountedNotFatal) {
+  std::vector<std::string> warnings;
+  LcmNode node("memq://", [&](const std::string& w) { warnings.push_back(w); });
+  int calls = 0;
+  node.subscribe<slam_pose_t>("SLAM_POSE", [&](const slam_pose_t& m, const ReceivedInfo&) {
+    ++calls;
+    if (m.seq < 0) throw std::runtime_error("negative seq");
+  });
+  node.subscribeRaw("RAW",
+                    [](const void*, uint32_t, const ReceivedInfo&) { throw std::length_error("raw"); });
+  slam_pose_t bad{};
+  bad.seq = -1;
+  node.publish("SLAM_POSE", bad);
+  node.raw().publish("RAW", "x", 1);
+  slam_pose_t good{};
+  node.publish("SLAM_POSE", good);
+  for (int i = 0; i < 3; ++i) node.handle(100);
+  EXPECT_EQ(calls, 2);
+  EXPECT_EQ(node.malformedCount(), 2);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("negative seq"), std::string::npos) << warnings[0];
+}
+
 TEST(LcmNode, BadUrlIsAClearError) {
   EXPECT_THROW(LcmNode("nonsense://x"), LcmError);
 }

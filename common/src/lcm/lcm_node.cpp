@@ -54,10 +54,18 @@ bool LcmNode::handle(int timeout_ms) {
 }
 
 void LcmNode::subscribeRaw(const std::string& channel, RawHandler handler) {
-  auto sub = std::make_unique<RawSubscriber>(std::move(handler));
+  auto sub = std::make_unique<RawSubscriber>(this, std::move(handler));
   lcm::Subscription* s = lcm_.subscribe(channel, &RawSubscriber::onMessage, sub.get());
   s->setQueueCapacity(queue_capacity_);
   subscribers_.push_back(std::move(sub));
+}
+
+void LcmNode::guarded(const std::string& channel, uint32_t size, const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const std::exception& e) {
+    reportMalformed(channel, size, std::string("message its handler could use (") + e.what() + ")");
+  }
 }
 
 void LcmNode::reportMalformed(const std::string& channel, uint32_t size, const std::string& expected) {

@@ -1,6 +1,7 @@
 #pragma once
-// One LCM connection with typed publish and subscribe. Subscriptions decode by hand, so a malformed message
-// from another publisher is counted and reported (channel, size, reason) instead of silently dropped.
+// One LCM connection with typed publish and subscribe. Subscriptions check each message's declared lengths
+// against its bytes before decoding (wire_check.hpp), so a malformed or hostile message from another
+// publisher is counted and reported (channel, size, reason) and can neither crash nor stall the process.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -9,6 +10,8 @@
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
+
+#include "bmp/lcm/wire_check.hpp"
 
 namespace bmp {
 
@@ -85,25 +88,32 @@ class LcmNode {
         : node(node), handler(std::move(fn)) {}
     void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
       Msg msg;
-      const int status = msg.decode(rbuf->data, 0, rbuf->data_size);
-      if (status < 0 || static_cast<uint32_t>(status) != rbuf->data_size) {
-        node->reportMalformed(channel, rbuf->data_size,
-                              status < 0 ? std::string(Msg::getTypeName()) + " (wrong type or truncated)"
-                                         : std::string(Msg::getTypeName()) + " without trailing bytes");
+      std::string why;
+      if (!wire::decode(msg, rbuf->data, rbuf->data_size, why)) {
+        node->reportMalformed(channel, rbuf->data_size, std::string(Msg::getTypeName()) + " (" + why + ")");
         return;
       }
-      handler(msg, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+      node->guarded(channel, rbuf->data_size, [&] {
+        handler(msg, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+      });
     }
     LcmNode* node;
     std::function<void(const Msg&, const ReceivedInfo&)> handler;
   };
   struct RawSubscriber : SubscriberBase {
-    RawSubscriber(RawHandler fn) : handler(std::move(fn)) {}
+    RawSubscriber(LcmNode* node, RawHandler fn) : node(node), handler(std::move(fn)) {}
     void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-      handler(rbuf->data, rbuf->data_size, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+      node->guarded(channel, rbuf->data_size, [&] {
+        handler(rbuf->data, rbuf->data_size, ReceivedInfo{channel, rbuf->recv_utime, rbuf->data_size});
+      });
     }
+    LcmNode* node;
     RawHandler handler;
   };
+
+  // Runs a handler; an exception it throws is reported and counted as malformed, never propagated through
+  // LCM's C dispatch (which cannot unwind) and never ends the process.
+  void guarded(const std::string& channel, uint32_t size, const std::function<void()>& call);
 
   std::string url_;
   lcm::LCM lcm_;
