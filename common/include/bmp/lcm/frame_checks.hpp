@@ -1,0 +1,71 @@
+#pragma once
+// What every consumer of RGBD_FRAME checks before it uses a frame, beyond decoding: a frame can decode
+// perfectly and still be unusable (fx = NaN, a depth image of another size, a PNG declared as raw) or
+// belong to another stream (stamps going back, another camera). One home for the rules, so the tracker,
+// the detector and any tool refuse the same frames with the same words.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <bmp/rgbd_frame_t.hpp>
+
+namespace bmp {
+
+// The largest image side we accept: larger is another publisher's mistake, not a camera we support.
+inline constexpr int kMaxImageSide = 8192;
+
+// Why the frame cannot be used on its own (intrinsics, sizes, encodings, depth scale), or "".
+std::string checkFrame(const rgbd_frame_t& msg);
+
+// Bounds of a plausible frame stream. A frame beyond them is refused rather than trusted, so one forged
+// frame (seq = INT64_MAX, a stamp in the year 3000) cannot make every later real frame look old.
+struct FrameStreamLimits {
+  int64_t max_seq_gap = 10000;     // frames; a 3 s pause at 30 Hz is 90
+  double max_stamp_gap_s = 600.0;  // seconds between consecutive accepted frames
+  int resync_frames = 5;           // consecutive, mutually ordered frames that start a new stream
+};
+
+// One consumer's view of the frame stream. accept() refuses frames that fail checkFrame, whose seq or
+// stamp does not move forward (or jumps beyond the limits), or whose camera differs from the stream's
+// first (a camera change mid-run needs a restart: a map built with one camera is wrong for another). It
+// counts frames lost upstream from gaps in seq, so every frame capture published after the first one
+// received is either handled, refused with a reason, or counted as lost. A capture that restarts (seq and
+// stamps from the beginning) is followed once resync_frames of its frames arrived in order.
+class FrameStream {
+ public:
+  struct Verdict {
+    bool ok = true;
+    std::string reason;       // why refused (naming seq and the rule), or why the stream re-synchronised
+    int64_t lost_before = 0;  // frames missing between the last accepted one and this one
+  };
+  explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits) {}
+  Verdict accept(const rgbd_frame_t& msg);
+
+  int64_t accepted() const { return accepted_; }
+  int64_t refused() const { return refused_; }
+  int64_t lostBefore() const { return lost_before_; }
+  int64_t resyncs() const { return resyncs_; }
+
+ private:
+  struct Position {
+    int64_t seq = -1;
+    int64_t utime = 0;
+  };
+  // Why `next` cannot follow `last`, or "".
+  std::string orderProblem(const Position& last, const Position& next) const;
+  Verdict decide(const rgbd_frame_t& msg);
+  Verdict refuse(const rgbd_frame_t& msg, const std::string& why);
+  Verdict take(const rgbd_frame_t& msg, std::string note);
+  // Frames missing before msg (counted once: a refused frame arrived, so it is refused, not lost).
+  int64_t countGap(const rgbd_frame_t& msg);
+
+  FrameStreamLimits limits_;
+  std::optional<rgbd_frame_t> first_;  // headers only: images cleared
+  Position last_;                      // the last accepted frame
+  std::optional<int64_t> seen_seq_;    // the highest plausible seq received, accepted or refused
+  Position candidate_;                 // the newest out-of-order frame, which may be a restarted capture's
+  int candidate_run_ = 0;
+  int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0;
+};
+
+}  // namespace bmp

@@ -1,0 +1,148 @@
+#include "bmp/lcm/frame_checks.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace bmp {
+
+namespace {
+
+std::string checkCamera(const camera_t& c) {
+  if (c.width <= 0 || c.height <= 0 || c.width > kMaxImageSide || c.height > kMaxImageSide)
+    return "camera size " + std::to_string(c.width) + "x" + std::to_string(c.height) + " is not a camera's";
+  const double k[] = {c.fx, c.fy, c.cx, c.cy};
+  for (double v : k)
+    if (!std::isfinite(v)) return "camera intrinsics are not finite";
+  if (c.fx <= 0 || c.fy <= 0) return "camera focal length fx/fy must be positive";
+  if (c.cx < 0 || c.cy < 0 || c.cx > c.width || c.cy > c.height)
+    return "camera principal point lies outside the image";
+  for (double d : c.distortion)
+    if (!std::isfinite(d)) return "camera distortion is not finite";
+  return "";
+}
+
+std::string checkImage(const image_t& img, const camera_t& cam, int8_t pixel_format, const char* what) {
+  const std::string name(what);
+  if (img.width != cam.width || img.height != cam.height)
+    return name + " image is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+           ", the camera " + std::to_string(cam.width) + "x" + std::to_string(cam.height);
+  if (img.pixel_format != pixel_format) return name + " image has the wrong pixel format";
+  if (img.size <= 0) return name + " image is empty";
+  switch (img.encoding) {
+    case image_t::ENCODING_RAW: {
+      const int64_t channels = pixel_format == image_t::PIXEL_BGR8     ? 3
+                               : pixel_format == image_t::PIXEL_MONO16 ? 2
+                                                                       : 1;
+      if (int64_t{img.size} != int64_t{img.width} * img.height * channels)
+        return name + " image is declared raw but holds " + std::to_string(img.size) + " bytes";
+      return "";
+    }
+    case image_t::ENCODING_PNG:
+      if (img.size < 8 || img.data[0] != 0x89 || img.data[1] != 'P' || img.data[2] != 'N' ||
+          img.data[3] != 'G')
+        return name + " image is declared PNG but is not";
+      return "";
+    case image_t::ENCODING_JPEG:
+      if (pixel_format == image_t::PIXEL_MONO16) return name + " image: 16-bit depth cannot be JPEG";
+      if (img.size < 4 || img.data[0] != 0xFF || img.data[1] != 0xD8)
+        return name + " image is declared JPEG but is not";
+      return "";
+    default:
+      return name + " image has unknown encoding " + std::to_string(img.encoding);
+  }
+}
+
+bool sameCamera(const rgbd_frame_t& a, const rgbd_frame_t& b) {
+  const camera_t &x = a.camera, &y = b.camera;
+  bool same = x.width == y.width && x.height == y.height && x.fx == y.fx && x.fy == y.fy && x.cx == y.cx &&
+              x.cy == y.cy && a.depth_scale == b.depth_scale;
+  for (int i = 0; i < 5; ++i) same = same && x.distortion[i] == y.distortion[i];
+  return same;
+}
+
+std::string describe(const rgbd_frame_t& f) {
+  std::ostringstream s;
+  s << f.camera.width << "x" << f.camera.height << " fx " << f.camera.fx << " fy " << f.camera.fy << " cx "
+    << f.camera.cx << " cy " << f.camera.cy << " depth scale " << f.depth_scale;
+  return s.str();
+}
+
+}  // namespace
+
+std::string checkFrame(const rgbd_frame_t& msg) {
+  if (std::string why = checkCamera(msg.camera); !why.empty()) return why;
+  if (!std::isfinite(msg.depth_scale) || msg.depth_scale <= 0) return "depth_scale must be positive";
+  if (std::string why = checkImage(msg.color, msg.camera, image_t::PIXEL_BGR8, "colour"); !why.empty())
+    return why;
+  return checkImage(msg.depth, msg.camera, image_t::PIXEL_MONO16, "depth");
+}
+
+std::string FrameStream::orderProblem(const Position& last, const Position& next) const {
+  if (next.seq <= last.seq)
+    return "seq " + std::to_string(next.seq) + " does not follow " + std::to_string(last.seq);
+  if (next.seq - last.seq > limits_.max_seq_gap)
+    return "seq jumps from " + std::to_string(last.seq) + " to " + std::to_string(next.seq);
+  if (next.utime <= last.utime) return "stamp is not after the previous frame's";
+  if (static_cast<double>(next.utime - last.utime) > limits_.max_stamp_gap_s * 1e6)
+    return "stamp jumps " + std::to_string((next.utime - last.utime) / 1000000) + " s ahead";
+  return "";
+}
+
+FrameStream::Verdict FrameStream::refuse(const rgbd_frame_t& msg, const std::string& why) {
+  ++refused_;
+  return {false, "frame seq " + std::to_string(msg.seq) + ": " + why, 0};
+}
+
+FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note) {
+  last_ = {msg.seq, msg.utime};
+  candidate_run_ = 0;
+  ++accepted_;
+  return {true, std::move(note), 0};
+}
+
+int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
+  if (!seen_seq_) {
+    seen_seq_ = msg.seq;  // frames published before we listened are not ours to count
+    return 0;
+  }
+  if (msg.seq <= *seen_seq_ || msg.seq - *seen_seq_ > limits_.max_seq_gap) return 0;
+  const int64_t gap = msg.seq - *seen_seq_ - 1;
+  seen_seq_ = msg.seq;
+  lost_before_ += gap;
+  return gap;
+}
+
+FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
+  const int64_t gap = countGap(msg);
+  Verdict v = decide(msg);
+  v.lost_before = gap;
+  return v;
+}
+
+FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
+  if (std::string why = checkFrame(msg); !why.empty()) return refuse(msg, why);
+  if (!first_) {
+    rgbd_frame_t header = msg;
+    header.color = image_t{};
+    header.depth = image_t{};
+    first_ = std::move(header);
+    return take(msg, "");
+  }
+  if (!sameCamera(*first_, msg))
+    return refuse(msg, "camera changed mid-run, from " + describe(*first_) + " to " + describe(msg) +
+                           "; restart this process to use another camera");
+  const Position next{msg.seq, msg.utime};
+  const std::string why = orderProblem(last_, next);
+  if (why.empty()) return take(msg, "");
+  // Out of order: a forged frame, or the first frames of a restarted capture. Only a run of frames in
+  // order among themselves is followed.
+  candidate_run_ = (candidate_run_ > 0 && orderProblem(candidate_, next).empty()) ? candidate_run_ + 1 : 1;
+  candidate_ = next;
+  if (candidate_run_ < limits_.resync_frames) return refuse(msg, why);
+  ++resyncs_;
+  seen_seq_ = msg.seq;
+  return take(msg, "frame seq " + std::to_string(msg.seq) + ": stream re-synchronised after " +
+                       std::to_string(limits_.resync_frames) + " frames out of order (" + why + ")");
+}
+
+}  // namespace bmp

@@ -1,0 +1,151 @@
+// The checks every RGBD_FRAME consumer applies after decoding: usable on its own, and part of one stream.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "bmp/lcm/frame_checks.hpp"
+
+namespace bmp {
+namespace {
+
+image_t raw(int w, int h, int8_t format, int bytes_per_pixel) {
+  image_t img{};
+  img.width = w;
+  img.height = h;
+  img.encoding = image_t::ENCODING_RAW;
+  img.pixel_format = format;
+  img.size = w * h * bytes_per_pixel;
+  img.data.assign(static_cast<std::size_t>(img.size), 1);
+  return img;
+}
+
+rgbd_frame_t frame(int64_t seq, int w = 8, int h = 6) {
+  rgbd_frame_t f{};
+  f.seq = seq;
+  f.utime = 1000000 + seq * 33333;
+  f.camera.width = w;
+  f.camera.height = h;
+  f.camera.fx = f.camera.fy = 5.0;
+  f.camera.cx = w / 2.0;
+  f.camera.cy = h / 2.0;
+  f.depth_scale = 5000;
+  f.color = raw(w, h, image_t::PIXEL_BGR8, 3);
+  f.depth = raw(w, h, image_t::PIXEL_MONO16, 2);
+  return f;
+}
+
+TEST(FrameChecks, AGoodFramePasses) {
+  EXPECT_EQ(checkFrame(frame(0)), "");
+}
+
+TEST(FrameChecks, UnusableCamerasAreRefusedWithTheReason) {
+  auto f = frame(0);
+  f.camera.fx = std::nan("");
+  EXPECT_NE(checkFrame(f).find("not finite"), std::string::npos);
+  f = frame(0);
+  f.camera.fx = 0;
+  EXPECT_NE(checkFrame(f).find("focal length"), std::string::npos);
+  f = frame(0);
+  f.depth_scale = 0;
+  EXPECT_NE(checkFrame(f).find("depth_scale"), std::string::npos);
+  f = frame(0);
+  f.camera.distortion[2] = std::numeric_limits<double>::infinity();
+  EXPECT_NE(checkFrame(f).find("distortion"), std::string::npos);
+  f = frame(0);
+  f.camera.width = -3;
+  EXPECT_NE(checkFrame(f).find("camera size"), std::string::npos);
+}
+
+TEST(FrameChecks, ImagesMustMatchTheCameraAndTheirEncoding) {
+  auto f = frame(0);
+  f.depth = raw(4, 6, image_t::PIXEL_MONO16, 2);
+  EXPECT_NE(checkFrame(f).find("depth image is 4x6"), std::string::npos) << checkFrame(f);
+  f = frame(0);
+  f.color.size -= 1;
+  f.color.data.pop_back();
+  EXPECT_NE(checkFrame(f).find("declared raw"), std::string::npos);
+  f = frame(0);
+  f.color.encoding = image_t::ENCODING_PNG;  // raw bytes declared as PNG
+  EXPECT_NE(checkFrame(f).find("declared PNG"), std::string::npos);
+  f = frame(0);
+  f.depth.encoding = image_t::ENCODING_JPEG;
+  EXPECT_NE(checkFrame(f).find("cannot be JPEG"), std::string::npos);
+  f = frame(0);
+  f.color.pixel_format = image_t::PIXEL_MONO8;
+  EXPECT_NE(checkFrame(f).find("pixel format"), std::string::npos);
+  f = frame(0);
+  f.color.encoding = 9;
+  EXPECT_NE(checkFrame(f).find("unknown encoding"), std::string::npos);
+}
+
+TEST(FrameStream, GapsAreCountedAsLost) {
+  FrameStream s;
+  EXPECT_TRUE(s.accept(frame(5)).ok);  // joined late: not a loss of ours
+  EXPECT_TRUE(s.accept(frame(6)).ok);
+  const auto v = s.accept(frame(10));
+  EXPECT_TRUE(v.ok);
+  EXPECT_EQ(v.lost_before, 3);
+  EXPECT_EQ(s.lostBefore(), 3);
+  EXPECT_EQ(s.accepted(), 3);
+}
+
+TEST(FrameStream, StampsOutOfOrderAndRepeatsAreRefused) {
+  FrameStream s;
+  ASSERT_TRUE(s.accept(frame(0)).ok);
+  ASSERT_TRUE(s.accept(frame(1)).ok);
+  auto old = frame(2);
+  old.utime = frame(0).utime;
+  const auto v = s.accept(old);
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(v.reason.find("stamp"), std::string::npos) << v.reason;
+  EXPECT_FALSE(s.accept(frame(1)).ok);  // a repeat
+  EXPECT_TRUE(s.accept(frame(3)).ok);
+  EXPECT_EQ(s.lostBefore(), 0);  // seq 2 arrived: refused, not lost
+  EXPECT_EQ(s.refused(), 2);
+}
+
+TEST(FrameStream, ACameraChangeMidRunIsRefusedClearly) {
+  FrameStream s;
+  ASSERT_TRUE(s.accept(frame(0)).ok);
+  auto other = frame(1, 10, 6);
+  const auto v = s.accept(other);
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(v.reason.find("camera changed mid-run"), std::string::npos) << v.reason;
+  auto scaled = frame(2);
+  scaled.depth_scale = 1000;
+  EXPECT_FALSE(s.accept(scaled).ok);
+  EXPECT_TRUE(s.accept(frame(3)).ok);
+}
+
+// One forged frame with an absurd seq or stamp must not make every later real frame look old.
+TEST(FrameStream, AForgedFrameCannotPoisonTheStream) {
+  FrameStream s;
+  ASSERT_TRUE(s.accept(frame(0)).ok);
+  auto forged = frame(std::numeric_limits<int64_t>::max());
+  EXPECT_FALSE(s.accept(forged).ok);
+  auto future = frame(1);
+  future.utime = std::numeric_limits<int64_t>::max();
+  EXPECT_FALSE(s.accept(future).ok);
+  for (int64_t seq = 1; seq < 20; ++seq) EXPECT_TRUE(s.accept(frame(seq)).ok) << seq;
+  EXPECT_EQ(s.lostBefore(), 0);
+}
+
+// A restarted capture plays from seq 0 again: followed after a few frames in order, not refused forever.
+TEST(FrameStream, ARestartedCaptureIsFollowedAfterAFewFrames) {
+  FrameStreamLimits limits;
+  limits.resync_frames = 3;
+  FrameStream s(limits);
+  for (int64_t seq = 0; seq < 50; ++seq) ASSERT_TRUE(s.accept(frame(seq)).ok);
+  EXPECT_FALSE(s.accept(frame(0)).ok);
+  EXPECT_FALSE(s.accept(frame(1)).ok);
+  const auto v = s.accept(frame(2));
+  EXPECT_TRUE(v.ok);
+  EXPECT_NE(v.reason.find("re-synchronised"), std::string::npos);
+  EXPECT_TRUE(s.accept(frame(5)).ok);
+  EXPECT_EQ(s.resyncs(), 1);
+  EXPECT_EQ(s.lostBefore(), 2);  // seq 3 and 4 of the new stream
+}
+
+}  // namespace
+}  // namespace bmp
