@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -32,9 +33,16 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, Output output, const s
   args.push_back(nullptr);
   std::vector<std::string> env_copy = extra_env;
 
+  const pid_t parent = ::getpid();
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   if (pid_ == 0) {
+    // If the parent dies (a launcher killed with SIGKILL), the child is asked to stop as by Ctrl-C and
+    // writes what it owes, instead of running on as an orphan. And a closed output pipe must not kill it
+    // before that: SIGPIPE stays ignored across exec, so writes fail with EPIPE instead.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) ::raise(SIGTERM);  // the parent died before prctl took effect
+    ::signal(SIGPIPE, SIG_IGN);
     if (out_fd >= 0) {
       ::dup2(out_fd, STDOUT_FILENO);
       ::dup2(out_fd, STDERR_FILENO);

@@ -1,6 +1,7 @@
 #pragma once
 // A child process owned by an object: started with fork/exec, its output sent to a file or a pipe, and
-// killed on destruction if it is still running, so a failing test or launcher never leaves orphans.
+// killed on destruction if it is still running, so a failing test or launcher never leaves orphans. If the
+// parent itself is killed, the child receives SIGTERM (parent-death signal) and stops cleanly.
 #include <sys/types.h>
 
 #include <optional>
