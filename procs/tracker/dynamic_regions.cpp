@@ -1,0 +1,68 @@
+#include "tracker/dynamic_regions.hpp"
+
+namespace bmp::tracker {
+
+namespace {
+
+bool inside(const cv::Rect2f& r, const cv::Point2f& p) {
+  return p.x >= r.x && p.y >= r.y && p.x < r.x + r.width && p.y < r.y + r.height;
+}
+
+float heldShare(const cv::Rect2f& medium, const std::vector<ObjectBox>& boxes) {
+  const float area = medium.area();
+  if (area <= 0) return 0.0f;
+  float best = 0.0f;
+  for (const auto& b : boxes)
+    if (b.level == DynamicLevel::kHigh) best = std::max(best, (medium & b.box).area() / area);
+  return best;
+}
+
+}  // namespace
+
+std::vector<uint8_t> movingBoxes(const std::vector<ObjectBox>& boxes, const RegionOptions& options,
+                                 const std::vector<float>& moving_share) {
+  std::vector<uint8_t> moving(boxes.size(), 0);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const ObjectBox& b = boxes[i];
+    if (b.level == DynamicLevel::kHigh) {
+      moving[i] = 1;
+    } else if (b.level == DynamicLevel::kMedium) {
+      const bool held = heldShare(b.box, boxes) >= options.medium_held_overlap;
+      const bool seen_moving = i < moving_share.size() && moving_share[i] >= options.medium_moving_keypoints;
+      moving[i] = held || seen_moving;
+    }
+  }
+  return moving;
+}
+
+std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
+                                    const std::vector<ObjectBox>& boxes, const std::vector<uint8_t>& moving) {
+  std::vector<uint8_t> z(keys.size(), 0);
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    bool in_moving = false, in_low = false;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (!inside(boxes[i].box, keys[k].pt)) continue;
+      if (boxes[i].level == DynamicLevel::kLow) in_low = true;
+      if (i < moving.size() && moving[i]) in_moving = true;
+    }
+    z[k] = in_moving && !in_low;
+  }
+  return z;
+}
+
+std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std::vector<ObjectBox>& boxes,
+                                const std::vector<uint8_t>& flag) {
+  std::vector<float> share(boxes.size(), 0.0f);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    int in = 0, set = 0;
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (!inside(boxes[i].box, keys[k].pt)) continue;
+      ++in;
+      set += k < flag.size() && flag[k];
+    }
+    share[i] = in > 0 ? static_cast<float>(set) / in : 0.0f;
+  }
+  return share;
+}
+
+}  // namespace bmp::tracker

@@ -1,0 +1,45 @@
+#pragma once
+// The paper's dynamic-region test (An et al. 2025, section 3.2), per keypoint: the observation z = d when
+// the keypoint lies inside a high-dynamic box and outside every low-dynamic box, else z = s. A low-dynamic
+// object inside a person's box (a monitor behind someone) keeps its keypoints static. Medium-dynamic
+// objects (chairs, cups) count as dynamic only with evidence that they move: our rule, since the paper
+// leaves it open (see movingMediumBoxes).
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "bmp/common/dynamic_level.hpp"
+
+namespace bmp::tracker {
+
+struct ObjectBox {
+  cv::Rect2f box;  // distorted image pixels, as the detector saw the colour image
+  DynamicLevel level = DynamicLevel::kLow;
+  int class_id = -1;
+  float score = 0.0f;
+};
+
+struct RegionOptions {
+  // A medium-dynamic box counts as moving when at least this share of its area lies inside one
+  // high-dynamic box: an object in a person's hands moves with the person.
+  float medium_held_overlap = 0.5f;
+  // ... or when at least this share of its keypoints already have a moving probability over the
+  // threshold (geometric evidence carried by the map points): a chair that is being pushed.
+  float medium_moving_keypoints = 0.5f;
+};
+
+// Which boxes count as dynamic (z = d) regions: every high box, and each medium box with evidence it
+// moves. moving_share[i] is the share of box i's keypoints already believed dynamic (empty: none known).
+std::vector<uint8_t> movingBoxes(const std::vector<ObjectBox>& boxes, const RegionOptions& options,
+                                 const std::vector<float>& moving_share = {});
+
+// Per keypoint: 1 (z = d) when it lies inside a moving box and inside no low-dynamic box, else 0 (z = s).
+std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
+                                    const std::vector<ObjectBox>& boxes, const std::vector<uint8_t>& moving);
+
+// Share of keypoints inside each box whose flag is set (for movingBoxes' moving_share).
+std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std::vector<ObjectBox>& boxes,
+                                const std::vector<uint8_t>& flag);
+
+}  // namespace bmp::tracker

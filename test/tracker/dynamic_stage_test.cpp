@@ -1,0 +1,88 @@
+// The paper's dynamic-region test and Bayesian moving probability, against hand-computed values.
+#include <gtest/gtest.h>
+
+#include "tracker/dynamic_regions.hpp"
+#include "tracker/moving_probability.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+constexpr double kEps = 1e-12;
+
+TEST(MovingProbability, BothObservationsFollowBayes) {
+  const MovingProbabilityOptions o;  // lambda = omega = 0.9
+  EXPECT_NEAR(updateMovingProbability(0.5, true, o), 0.9, kEps);
+  EXPECT_NEAR(updateMovingProbability(0.5, false, o), 0.1, kEps);
+  // z = d from 0.3: 0.9*0.3 / (0.9*0.3 + 0.1*0.7) = 0.27 / 0.34
+  EXPECT_NEAR(updateMovingProbability(0.3, true, o), 0.27 / 0.34, kEps);
+  // z = s from 0.3: 0.1*0.3 / (0.1*0.3 + 0.9*0.7) = 0.03 / 0.66 (the paper's printed form would give
+  // 0.27/0.34)
+  EXPECT_NEAR(updateMovingProbability(0.3, false, o), 0.03 / 0.66, kEps);
+  MovingProbabilityOptions asym;
+  asym.lambda = 0.8;
+  asym.omega = 0.6;
+  // z = d: 0.8*0.5 / (0.8*0.5 + 0.4*0.5); z = s: 0.2*0.5 / (0.2*0.5 + 0.6*0.5)
+  EXPECT_NEAR(updateMovingProbability(0.5, true, asym), 0.4 / 0.6, kEps);
+  EXPECT_NEAR(updateMovingProbability(0.5, false, asym), 0.1 / 0.4, kEps);
+}
+
+TEST(MovingProbability, PropagatesOverFramesAndCrossesTheThreshold) {
+  const MovingProbabilityOptions o;
+  double p = o.unmatched_prior;
+  p = updateMovingProbability(p, true, o);  // 0.9
+  EXPECT_TRUE(isDynamic(p, o));
+  p = updateMovingProbability(p, true, o);  // 0.81 / 0.82
+  EXPECT_NEAR(p, 0.81 / 0.82, kEps);
+  // Static observations bring it back: one returns to 0.9, two to 0.5 (not above the threshold), three below.
+  p = updateMovingProbability(p, false, o);
+  EXPECT_NEAR(p, 0.9, 1e-9);
+  p = updateMovingProbability(p, false, o);
+  EXPECT_NEAR(p, 0.5, 1e-9);
+  EXPECT_FALSE(isDynamic(p, o));
+  p = updateMovingProbability(p, false, o);
+  EXPECT_NEAR(p, 0.1, 1e-9);
+  // Certainty stays certain; out-of-range priors are clamped.
+  EXPECT_EQ(updateMovingProbability(1.0, false, o), 1.0);
+  EXPECT_EQ(updateMovingProbability(0.0, true, o), 0.0);
+  EXPECT_EQ(updateMovingProbability(1.5, true, o), 1.0);
+}
+
+cv::KeyPoint at(float x, float y) {
+  return cv::KeyPoint(cv::Point2f(x, y), 7.0f);
+}
+
+ObjectBox box(float x, float y, float w, float h, DynamicLevel level) {
+  ObjectBox b;
+  b.box = cv::Rect2f(x, y, w, h);
+  b.level = level;
+  return b;
+}
+
+TEST(DynamicRegions, InsideAPersonAndOutsideEveryLowBox) {
+  const std::vector<ObjectBox> boxes = {box(100, 100, 200, 300, DynamicLevel::kHigh),
+                                        box(150, 150, 50, 50, DynamicLevel::kLow)};  // monitor behind someone
+  const std::vector<cv::KeyPoint> keys = {at(120, 120), at(160, 160), at(50, 50), at(299, 399), at(300, 400)};
+  const auto moving = movingBoxes(boxes, RegionOptions{});
+  const auto z = observeRegions(keys, boxes, moving);
+  EXPECT_EQ(z, (std::vector<uint8_t>{1, 0, 0, 1, 0}));  // right and bottom edges are outside
+}
+
+TEST(DynamicRegions, OverlappingPeopleAndMediumObjects) {
+  const std::vector<ObjectBox> boxes = {
+      box(0, 0, 100, 100, DynamicLevel::kHigh), box(80, 0, 100, 100, DynamicLevel::kHigh),  // two people
+      box(60, 40, 20, 20, DynamicLevel::kMedium),    // a cup in a person's hands: held, moves
+      box(400, 300, 80, 80, DynamicLevel::kMedium),  // a chair alone: no evidence it moves
+      box(90, 10, 20, 20, DynamicLevel::kLow)};      // a low object where the two people overlap
+  const auto moving = movingBoxes(boxes, RegionOptions{});
+  EXPECT_EQ(moving, (std::vector<uint8_t>{1, 1, 1, 0, 0}));
+  const std::vector<cv::KeyPoint> keys = {at(85, 50), at(70, 50), at(420, 320), at(95, 15)};
+  EXPECT_EQ(observeRegions(keys, boxes, moving), (std::vector<uint8_t>{1, 1, 0, 0}));
+  // The chair becomes moving when most of its keypoints are already believed dynamic.
+  const std::vector<cv::KeyPoint> chair_keys = {at(410, 310), at(420, 320), at(430, 330), at(10, 200)};
+  const auto share = shareInBoxes(chair_keys, boxes, {1, 1, 0, 0});
+  EXPECT_NEAR(share[3], 2.0 / 3.0, 1e-6);
+  EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, share)[3], 1);
+}
+
+}  // namespace
+}  // namespace bmp::tracker
