@@ -1,8 +1,20 @@
 #include "detector/detection_worker.hpp"
 
+#include <stdexcept>
+
 #include "bmp/common/timing.hpp"
 
 namespace bmp::detector {
+
+QueueMode parseQueueMode(const std::string& text) {
+  if (text == "latest") return QueueMode::kLatest;
+  if (text == "every") return QueueMode::kEvery;
+  throw std::invalid_argument("mode must be 'latest' or 'every', got '" + text + "'");
+}
+
+const char* toString(QueueMode mode) {
+  return mode == QueueMode::kLatest ? "latest" : "every";
+}
 
 FrameResult processFrame(Detector& detector, const FrameJob& job) {
   FrameResult result;
@@ -32,18 +44,19 @@ FrameResult processFrame(Detector& detector, const FrameJob& job) {
 DetectionWorker::DetectionWorker(Detector& detector, QueueMode mode, std::size_t capacity,
                                  std::function<void()> on_result)
     : detector_(detector),
-      slot_(mode, capacity),
+      queue_(mode == QueueMode::kLatest ? 1 : capacity,
+             mode == QueueMode::kLatest ? WhenFull::kDropOldest : WhenFull::kWait),
       on_result_(std::move(on_result)),
       thread_([this] { run(); }) {}
 
 DetectionWorker::~DetectionWorker() {
   stopping_ = true;
-  slot_.close();
+  queue_.close();
   thread_.join();
 }
 
 std::size_t DetectionWorker::submit(FrameJob job) {
-  return slot_.push(std::move(job));
+  return queue_.push(std::move(job));
 }
 
 std::vector<FrameResult> DetectionWorker::takeResults() {
@@ -54,7 +67,7 @@ std::vector<FrameResult> DetectionWorker::takeResults() {
 }
 
 void DetectionWorker::run() {
-  while (auto job = slot_.pop()) {
+  while (auto job = queue_.pop()) {
     if (stopping_) break;
     FrameResult result;
     try {

@@ -1,5 +1,5 @@
 #pragma once
-// Inference on its own thread (the paper's detection thread): frames go in through a FrameSlot, results
+// Inference on its own thread (the paper's detection thread): frames go in through a bounded queue, results
 // come out through takeResults(), so the thread that owns the LCM connection never waits for the network.
 #include <atomic>
 #include <cstdint>
@@ -9,11 +9,20 @@
 #include <thread>
 #include <vector>
 
+#include "bmp/common/bounded_queue.hpp"
 #include "bmp/common/image_codec.hpp"
 #include "detector/detector.hpp"
-#include "detector/frame_slot.hpp"
 
 namespace bmp::detector {
+
+// How frames reach the worker. kLatest: one waits at a time and a newer frame replaces it (counted as
+// dropped), so a slow detector always works on the freshest image. kEvery: frames queue up to a capacity
+// and the receiver waits when it is full, so lockstep runs process every frame.
+enum class QueueMode { kLatest, kEvery };
+
+// Throws std::invalid_argument for anything but "latest" or "every".
+QueueMode parseQueueMode(const std::string& text);
+const char* toString(QueueMode mode);
 
 struct FrameJob {
   int64_t seq = 0;
@@ -38,7 +47,8 @@ FrameResult processFrame(Detector& detector, const FrameJob& job);
 
 class DetectionWorker {
  public:
-  // on_result is called on the worker thread after each result is queued (e.g. Wakeup::notify).
+  // capacity: frames waiting in kEvery mode (at least 1); kLatest holds one. on_result is called on the
+  // worker thread after each result is queued (e.g. Wakeup::notify).
   DetectionWorker(Detector& detector, QueueMode mode, std::size_t capacity,
                   std::function<void()> on_result = nullptr);
   ~DetectionWorker();  // finishes the frame in progress, discards the rest
@@ -50,12 +60,12 @@ class DetectionWorker {
   // Results finished since the last call, in processing order.
   std::vector<FrameResult> takeResults();
   // Frames waiting for the worker (not counting the one in progress).
-  std::size_t pending() const { return slot_.size(); }
+  std::size_t pending() const { return queue_.size(); }
 
  private:
   void run();
   Detector& detector_;
-  FrameSlot<FrameJob> slot_;
+  BoundedQueue<FrameJob> queue_;
   std::function<void()> on_result_;
   std::mutex results_mutex_;
   std::vector<FrameResult> results_;

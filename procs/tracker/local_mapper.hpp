@@ -10,9 +10,9 @@
 #include <thread>
 #include <vector>
 
+#include "bmp/common/bounded_queue.hpp"
 #include "bmp/common/se3.hpp"
 #include "bmp/common/timing.hpp"
-#include "tracker/bounded_queue.hpp"
 #include "tracker/key_frame.hpp"
 #include "tracker/map.hpp"
 #include "tracker/tracker_options.hpp"

@@ -31,9 +31,9 @@ struct RunSettings {
   double stop_timeout_s = 15.0;
   double drain_s = 1.0;  // after capture ends, before SIGINT: lets consumers finish
   bool evaluate = true;
-  std::string pose_channel = channels::kPose;       // heard for the run summary
+  std::string pose_channel = channels::kPose;              // heard for the run summary
   std::string detections_channel = channels::kDetections;  // likewise
-  std::vector<ProcessCommand> processes;          // args from config, before placeholder expansion
+  std::vector<ProcessCommand> processes;                   // args from config, before placeholder expansion
   std::vector<std::string> capture_args;
 };
 

@@ -1,0 +1,96 @@
+#include "detector/lcm/detector_node.hpp"
+
+#include <poll.h>
+
+#include <string>
+
+#include "bmp/common/log.hpp"
+#include "bmp/lcm/conversions.hpp"
+#include "detector/lcm/detections_message.hpp"
+
+namespace bmp::detector {
+
+namespace {
+
+Detector loadDetector(const DetectorSettings& settings) {
+  try {
+    return Detector(settings.detector, Config::fromFile(settings.dynamic_classes_path));
+  } catch (const ModelError& e) {
+    throw ConfigError(e.what());
+  }
+}
+
+}  // namespace
+
+DetectorNode::DetectorNode(ProcessContext& ctx, const DetectorSettings& settings)
+    : ctx_(ctx),
+      settings_(settings),
+      detector_(loadDetector(settings_)),
+      model_name_(detector_.modelName()),
+      worker_(detector_, settings_.mode, settings_.queue_capacity, [this] { wakeup_.notify(); }) {
+  log::info("model ", model_name_, " (", settings_.detector.modelSpec().path, ") ready; mode ",
+            toString(settings_.mode), ", ", settings_.frames_channel, " -> ", settings_.detections_channel);
+  ctx_.lcm.subscribe<rgbd_frame_t>(settings_.frames_channel,
+                                   [this](const rgbd_frame_t& msg, const ReceivedInfo&) { receive(msg); });
+}
+
+void DetectorNode::receive(const rgbd_frame_t& msg) {
+  ctx_.status.received();
+  FrameJob job;
+  job.seq = msg.seq;
+  job.utime = msg.utime;
+  try {
+    job.color = fromMsg(msg.color);
+  } catch (const ImageError& e) {
+    FrameResult failed;
+    failed.seq = msg.seq;
+    failed.utime = msg.utime;
+    failed.error = std::string("colour image: ") + e.what();
+    skip(failed);
+    return;
+  }
+  // Waits here in 'every' mode while the queue is full; counts the frame it displaced in 'latest' mode.
+  ctx_.status.dropped(static_cast<int64_t>(worker_.submit(std::move(job))));
+}
+
+void DetectorNode::skip(const FrameResult& failed) {
+  const std::string warning = "frame seq " + std::to_string(failed.seq) + ": " + failed.error + "; skipped";
+  log::warn(warning);
+  ctx_.status.malformed();
+  ctx_.status.setMessage(warning);
+  ctx_.lcm.publish(settings_.detections_channel, toDetectionsMessage(failed, model_name_));
+}
+
+void DetectorNode::publishResults() {
+  for (const auto& result : worker_.takeResults()) {
+    if (!result.ok) {
+      skip(result);
+      continue;
+    }
+    ctx_.lcm.publish(settings_.detections_channel, toDetectionsMessage(result, model_name_));
+    ctx_.status.processed();
+    frame_times_.add(result.total_ms);
+    ctx_.status.published();
+  }
+}
+
+int DetectorNode::run() {
+  while (!ctx_.stop.requested()) {
+    // Wakes for a frame or for a finished result, whichever comes first; the timeout keeps the heartbeat.
+    pollfd fds[2] = {{ctx_.lcm.raw().getFileno(), POLLIN, 0}, {wakeup_.fd(), POLLIN, 0}};
+    if (poll(fds, 2, 200) > 0 && (fds[0].revents & POLLIN) && !ctx_.lcm.handle(0)) {
+      log::error("LCM receive failed");
+      return 1;
+    }
+    wakeup_.clear();
+    publishResults();
+    ctx_.status.tick();
+  }
+  log::info("processed ", ctx_.status.processedCount(), " of ", ctx_.status.receivedCount(),
+            " frame(s), dropped ", ctx_.status.droppedCount(), ", malformed ", ctx_.status.malformedCount(),
+            ", not yet processed at exit ", worker_.pending(), "; per frame ",
+            frame_times_.empty() ? std::string("-") : frame_times_.summary());
+  return 0;
+}
+
+}  // namespace bmp::detector

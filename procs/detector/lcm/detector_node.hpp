@@ -1,0 +1,44 @@
+#pragma once
+// bmp-detector's LCM side: RGBD_FRAME in, handed to the DetectionWorker's thread; its results out as
+// DETECTIONS. The LCM thread only receives and publishes, so it never waits for the network. The process's
+// main only reads the settings and runs it.
+#include <bmp/rgbd_frame_t.hpp>
+
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/process.hpp"
+#include "detector/detection_worker.hpp"
+#include "detector/detector.hpp"
+#include "detector/detector_settings.hpp"
+#include "detector/wakeup.hpp"
+
+namespace bmp::detector {
+
+class DetectorNode {
+ public:
+  // Loads the model and subscribes. A missing or broken model is a ConfigError (exit code 2 before any
+  // frame is read).
+  DetectorNode(ProcessContext& ctx, const DetectorSettings& settings);
+  DetectorNode(const DetectorNode&) = delete;
+  DetectorNode& operator=(const DetectorNode&) = delete;
+
+  // Until a stop is requested; returns the exit code (1 if receiving from LCM fails). Logs the counts and
+  // per-frame times at the end.
+  int run();
+
+ private:
+  void receive(const rgbd_frame_t& msg);
+  void publishResults();
+  // A frame that cannot be processed is warned about, counted, and still answered (no boxes, the reason),
+  // so lockstep never waits in vain.
+  void skip(const FrameResult& failed);
+
+  ProcessContext& ctx_;
+  DetectorSettings settings_;
+  Detector detector_;
+  std::string model_name_;
+  Wakeup wakeup_;
+  TimingStats frame_times_;
+  DetectionWorker worker_;  // last: its thread stops first, before what it uses goes
+};
+
+}  // namespace bmp::detector

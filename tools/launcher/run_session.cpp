@@ -1,0 +1,216 @@
+#include "launcher/run_session.hpp"
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bmp/common/atomic_file.hpp"
+#include "bmp/common/child_process.hpp"
+#include "bmp/common/log.hpp"
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/lcm_node.hpp"
+#include "bmp/lcm/process.hpp"
+#include "launcher/launch_plan.hpp"
+#include "launcher/output_relay.hpp"
+#include "launcher/run_monitor.hpp"
+
+namespace bmp::launcher {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Launched {
+  std::string name;
+  std::unique_ptr<ChildProcess> child;
+};
+
+// A run's processes and what watches them, set up in this order and torn down in reverse (children first).
+struct Session {
+  Session(const RunSettings& settings, const RunRequest& request, fs::path logs_dir)
+      : monitor(request.lcm_url, settings.pose_channel, settings.detections_channel),
+        logs(std::move(logs_dir)) {}
+
+  StopSignal stop;
+  OutputRelay relay;
+  // Listening before anything starts, so the summary hears every frame's answer.
+  RunMonitor monitor;
+  fs::path logs;
+  std::vector<Launched> launched;  // every process but capture
+  Launched capture{"bmp-capture", nullptr};
+};
+
+std::unique_ptr<ChildProcess> start(const ProcessCommand& cmd, const fs::path& logs, OutputRelay& relay,
+                                    bool echo) {
+  if (!fs::exists(cmd.argv[0]))
+    throw std::runtime_error(cmd.argv[0] + ": not built (run tools/run, or build it)");
+  auto child = std::make_unique<ChildProcess>(cmd.argv, ChildProcess::Output::kPipe);
+  relay.follow(child->outputFd(), cmd.name, (logs / (cmd.name + ".log")).string(), echo);
+  std::string line;
+  for (const auto& a : cmd.argv) line += (line.empty() ? "" : " ") + a;
+  log::info("started ", cmd.name, " (pid ", child->pid(), "): ", line);
+  return child;
+}
+
+RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
+  RunRequest request;
+  request.dataset = args.value("dataset");
+  if (!request.dataset.empty() && !fs::is_directory(request.dataset))
+    throw std::runtime_error(request.dataset + ": no such dataset folder");
+  request.camera = args.value("camera");
+  request.mode = args.value("mode");
+  request.speed = args.value("speed");
+  request.frames = args.given("frames") ? args.integer("frames") : -1;
+  request.lcm_url = resolveLcmUrl(args.value("lcm-url"));
+  request.bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
+  request.out_dir = args.given("out")
+                        ? args.value("out")
+                        : (fs::path(settings.output_root) / runFolderName(request.dataset)).string();
+  return request;
+}
+
+// Creates the run folder and its logs/ and makes request.out_dir absolute; a folder chosen by us (not by
+// --out) is also linked as <output_root>/latest. Returns the logs folder.
+fs::path prepareRunFolder(RunRequest& request, const RunSettings& settings, bool link_latest) {
+  const fs::path logs = fs::path(request.out_dir) / "logs";
+  fs::create_directories(logs);
+  if (link_latest) {
+    const fs::path latest = fs::path(settings.output_root) / "latest";
+    std::error_code ignored;
+    fs::remove(latest, ignored);
+    fs::create_directory_symlink(fs::path(request.out_dir).filename(), latest, ignored);
+  }
+  request.out_dir = fs::absolute(request.out_dir).string();
+  return logs;
+}
+
+// Every executable first: a missing one must not leave the others half started.
+void checkBuilt(const LaunchPlan& plan) {
+  for (const auto& cmd : plan.processes)
+    if (!fs::exists(cmd.argv[0]))
+      throw std::runtime_error(cmd.argv[0] + ": not built (run tools/run, or build it)");
+}
+
+void startProcesses(Session& s, const LaunchPlan& plan) {
+  for (const auto& cmd : plan.processes) s.launched.push_back({cmd.name, start(cmd, s.logs, s.relay, false)});
+  s.capture.child = start(plan.capture, s.logs, s.relay, true);
+}
+
+// Until capture ends. An interrupt, or another process ending early, asks capture to stop (SIGINT), so the
+// run winds down the normal way.
+void superviseCapture(Session& s) {
+  bool failed_early = false;
+  while (s.capture.child->running()) {
+    s.relay.pump(100);
+    if (s.stop.requested()) {
+      log::warn("interrupted: stopping the run");
+      s.capture.child->signal(SIGINT);
+    }
+    for (auto& p : s.launched) {
+      if (!p.child->running() && !failed_early) {
+        log::error(p.name, " ended early with status ", *p.child->exitStatus(), "; see ",
+                   (s.logs / (p.name + ".log")).string());
+        failed_early = true;
+        s.capture.child->signal(SIGINT);
+      }
+    }
+  }
+}
+
+// Lets the consumers finish the last frames, then stops each with SIGINT (killed after stop_timeout_s).
+// Returns 0 when capture and every process exited with status 0, else 1.
+int stopOthers(Session& s, const RunSettings& settings) {
+  const Stopwatch drain;
+  while (drain.elapsedMs() < settings.drain_s * 1000.0 && !s.stop.requested()) s.relay.pump(50);
+
+  int worst = 0;
+  const auto record = [&worst](const std::string& name, int status) {
+    log::info(name, " exited with status ", status);
+    if (status != 0) worst = 1;
+  };
+  record(s.capture.name, *s.capture.child->exitStatus());
+  for (auto& p : s.launched) p.child->signal(SIGINT);
+  for (auto& p : s.launched) {
+    const Stopwatch waited;
+    while (p.child->running() && waited.elapsedMs() < settings.stop_timeout_s * 1000.0) s.relay.pump(50);
+    if (p.child->running()) log::warn(p.name, " did not stop within ", settings.stop_timeout_s, " s: killed");
+    record(p.name, p.child->stop(0.5));
+  }
+  while (s.relay.pump(50)) {
+  }
+  return worst;
+}
+
+// Runs bmp-eval on the trajectory against the ground truth; its exit status (0 when there is nothing to
+// evaluate).
+int evaluate(const LaunchPlan& plan, const RunRequest& request, OutputRelay& relay, const fs::path& logs) {
+  if (!fs::exists(plan.groundtruth_path)) {
+    log::info("no ground truth: nothing to evaluate");
+    return 0;
+  }
+  if (!fs::exists(plan.trajectory_path)) {
+    log::info("no trajectory was written (no tracker in this run): nothing to evaluate");
+    return 0;
+  }
+  const fs::path out(request.out_dir);
+  ProcessCommand eval{
+      "bmp-eval",
+      {(fs::path(request.bin_dir) / "bmp-eval").string(), "--gt", plan.groundtruth_path, "--est",
+       plan.trajectory_path, "--json", (out / "eval.json").string(), "--plot-dir", (out / "plots").string()}};
+  auto child = start(eval, logs, relay, true);
+  while (relay.pump(100)) {
+  }
+  return child->wait(60).value_or(1);
+}
+
+// Returns the run's exit status given the processes' (worst): a failed evaluation fails the run.
+int evaluateRun(Session& s, const LaunchPlan& plan, const RunRequest& request, int worst) {
+  if (worst == 0) return evaluate(plan, request, s.relay, s.logs) != 0 ? 1 : 0;
+  if (fs::exists(plan.trajectory_path)) {
+    // What was tracked before the failure is still worth a look; the run stays failed.
+    log::warn("a process failed: evaluating the poses written up to the failure");
+    evaluate(plan, request, s.relay, s.logs);
+  }
+  return worst;
+}
+
+void writeSummaryFile(const std::string& path, const std::string& text) {
+  try {
+    writeFileAtomically(path, text);
+  } catch (const FileWriteError& e) {
+    log::warn(e.what(), " (the run summary)");
+  }
+}
+
+}  // namespace
+
+int runSession(const ArgParser& args) {
+  const Config config = Config::fromFile(args.value("config"));
+  const RunSettings settings = runSettingsFromConfig(config.section("run"));
+  config.finish();
+
+  RunRequest request = requestFromArgs(args, settings);
+  const fs::path logs = prepareRunFolder(request, settings, !args.given("out"));
+  const LaunchPlan plan = makePlan(settings, request);
+  log::info("run folder ", request.out_dir, ", LCM ", request.lcm_url);
+  checkBuilt(plan);
+
+  Session session(settings, request, logs);
+  startProcesses(session, plan);
+  superviseCapture(session);
+  int worst = stopOthers(session, settings);
+
+  const RunSummary summary = session.monitor.summary();
+  writeSummaryFile((fs::path(request.out_dir) / "summary.json").string(), formatSummaryJson(summary));
+  if (settings.evaluate && !args.flag("no-eval")) worst = evaluateRun(session, plan, request, worst);
+  std::cout << formatSummaryText(summary) << std::flush;  // last, where the eye lands
+  log::info(worst == 0 ? "run finished: " : "run FAILED: ", request.out_dir, " (logs in ", logs.string(),
+            ")");
+  return worst;
+}
+
+}  // namespace bmp::launcher
