@@ -7,11 +7,12 @@
 #include <vector>
 
 #include "bmp/common/config.hpp"
+#include "bmp/common/dynamic_level.hpp"
 
 namespace bmp::detector {
 
-// Values match detection_t::LEVEL_* so the process can copy them into messages.
-enum class DynamicLevel : int8_t { kLow = 0, kMedium = 1, kHigh = 2 };
+// One definition with the tracker's (values match detection_t::LEVEL_*).
+using bmp::DynamicLevel;
 
 const char* toString(DynamicLevel level);
 
