@@ -83,6 +83,20 @@ TEST(LcmNode, HandlerExceptionIsCountedNotFatal) {
   EXPECT_NE(warnings[0].find("negative seq"), std::string::npos) << warnings[0];
 }
 
+// A flood of bad messages is counted in full but cannot flood the log.
+TEST(LcmNode, AFloodOfMalformedMessagesIsCountedWithFewWarnings) {
+  std::vector<std::string> warnings;
+  LcmNode node("memq://", [&](const std::string& w) { warnings.push_back(w); });
+  node.subscribe<slam_pose_t>("SLAM_POSE", [](const slam_pose_t&, const ReceivedInfo&) {});
+  for (int i = 0; i < 200; ++i) {
+    node.raw().publish("SLAM_POSE", "junk", 4);
+    node.handle(10);
+  }
+  EXPECT_EQ(node.malformedCount(), 200);
+  EXPECT_LE(warnings.size(), 6u);
+  EXPECT_GE(warnings.size(), 5u);
+}
+
 TEST(LcmNode, BadUrlIsAClearError) {
   EXPECT_THROW(LcmNode("nonsense://x"), LcmError);
 }

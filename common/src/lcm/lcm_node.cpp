@@ -1,5 +1,6 @@
 #include "bmp/lcm/lcm_node.hpp"
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 
@@ -69,9 +70,30 @@ void LcmNode::guarded(const std::string& channel, uint32_t size, const std::func
 }
 
 void LcmNode::reportMalformed(const std::string& channel, uint32_t size, const std::string& expected) {
-  ++malformed_;
-  warn_("malformed message on channel " + channel + " (" + std::to_string(size) + " bytes): not a " +
-        expected + "; skipped (" + std::to_string(malformed_) + " so far)");
+  const int64_t total = ++malformed_;
+  std::string line;
+  {
+    // The first few on a channel are each named; after that one line every few seconds says how many.
+    constexpr int kEachNamed = 5;
+    constexpr int64_t kSummaryEveryUs = 5'000'000;
+    const std::lock_guard<std::mutex> lock(warn_mutex_);
+    WarnState& w = warn_state_[channel];
+    const int64_t now = std::chrono::duration_cast<std::chrono::microseconds>(
+                            std::chrono::steady_clock::now().time_since_epoch())
+                            .count();
+    ++w.count;
+    if (w.count > kEachNamed && now - w.last_warned_us < kSummaryEveryUs) {
+      ++w.silenced;
+      return;
+    }
+    line = "malformed message on channel " + channel + " (" + std::to_string(size) + " bytes): not a " +
+           expected + "; skipped (" + std::to_string(total) + " so far";
+    if (w.silenced > 0) line += ", " + std::to_string(w.silenced) + " more on " + channel + " not shown";
+    line += ")";
+    w.silenced = 0;
+    w.last_warned_us = now;
+  }
+  warn_(line);
 }
 
 }  // namespace bmp

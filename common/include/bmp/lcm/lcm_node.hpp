@@ -2,9 +2,12 @@
 // One LCM connection with typed publish and subscribe. Subscriptions check each message's declared lengths
 // against its bytes before decoding (wire_check.hpp), so a malformed or hostile message from another
 // publisher is counted and reported (channel, size, reason) and can neither crash nor stall the process.
+#include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,7 +75,7 @@ class LcmNode {
   // Waits up to timeout_ms for messages and dispatches them; returns false on an LCM error.
   bool handle(int timeout_ms);
   // Messages that did not decode, over all subscriptions.
-  int64_t malformedCount() const { return malformed_; }
+  int64_t malformedCount() const { return malformed_.load(); }
   const std::string& url() const { return url_; }
   lcm::LCM& raw() { return lcm_; }
   // Messages LCM may queue per subscription before it drops the oldest (default 30).
@@ -118,7 +121,15 @@ class LcmNode {
   std::string url_;
   lcm::LCM lcm_;
   WarningSink warn_;
-  int64_t malformed_ = 0;
+  std::atomic<int64_t> malformed_{0};  // counted on whichever thread dispatches, read by the heartbeat
+  // Warnings are limited per channel, so a flood of bad messages cannot flood the log.
+  struct WarnState {
+    int64_t count = 0;
+    int64_t last_warned_us = 0;
+    int64_t silenced = 0;
+  };
+  std::mutex warn_mutex_;
+  std::map<std::string, WarnState> warn_state_;
   int queue_capacity_ = 30;
   std::vector<std::unique_ptr<SubscriberBase>> subscribers_;
 };
