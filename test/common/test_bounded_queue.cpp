@@ -101,6 +101,16 @@ TEST(BoundedQueue, TryPushRefusesWhenFullOrClosedWithoutDisplacing) {
   EXPECT_EQ(queue.pop(), std::nullopt);
 }
 
+TEST(BoundedQueue, PopForReturnsAnItemOrNothingAfterTheTimeout) {
+  BoundedQueue<int> q(2, WhenFull::kDropOldest);
+  EXPECT_FALSE(q.popFor(std::chrono::milliseconds(5)).has_value());
+  q.push(4);
+  EXPECT_EQ(q.popFor(std::chrono::milliseconds(5)).value_or(-1), 4);
+  std::thread producer([&q] { q.push(9); });
+  EXPECT_EQ(q.popFor(std::chrono::seconds(30)).value_or(-1), 9);  // woken by the push, not the timeout
+  producer.join();
+}
+
 TEST(BoundedQueue, ZeroCapacityHoldsOne) {
   BoundedQueue<int> queue(0, WhenFull::kDropOldest);
   EXPECT_EQ(queue.capacity(), 1u);

@@ -64,11 +64,13 @@ TEST(TrackerMessages, PoseAnswersItsFrameWithStateAndCounts) {
 
 TEST(TrackerMessages, SkippedFrameIsAnsweredWithItsSeq) {
   const Images im;
-  const slam_pose_t p = toSkippedPoseMessage(frameMessage(im.color, im.depth, true));
+  const slam_pose_t p =
+      toSkippedPoseMessage(frameMessage(im.color, im.depth, true), "colour image: not a PNG");
   EXPECT_EQ(p.seq, 12);
   EXPECT_EQ(p.utime, 1548339829896440);
   EXPECT_EQ(p.state, +slam_pose_t::STATE_SKIPPED);
   EXPECT_EQ(p.reference_keyframe_id, -1);
+  EXPECT_EQ(p.note, "colour image: not a PNG");
 }
 
 TEST(TrackerMessages, KeyFrameForwardsFileBytesUntouched) {

@@ -34,8 +34,9 @@ slam_pose_t toPoseMessage(const rgbd_frame_t& frame, const TrackResult& r) {
   return out;
 }
 
-slam_pose_t toSkippedPoseMessage(const rgbd_frame_t& frame) {
+slam_pose_t toSkippedPoseMessage(const rgbd_frame_t& frame, const std::string& reason) {
   slam_pose_t out{};
+  out.note = reason;
   out.utime = frame.utime;
   out.seq = frame.seq;
   out.T_world_cam = toMsg(SE3::Identity());

@@ -15,29 +15,49 @@ TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChann
     : ctx_(ctx),
       config_(std::move(config)),
       channels_(std::move(channels)),
-      capacity_(queue_capacity),
+      queue_(queue_capacity, WhenFull::kDropOldest),
       outputs_(outputs) {
   if (!outputs_.trajectory.empty()) live_trajectory_.emplace(outputs_.trajectory, kLiveComment);
   if (!outputs_.keyframe_trajectory.empty())
     live_keyframes_.emplace(outputs_.keyframe_trajectory, kLiveComment);
   ctx_.lcm.subscribe<rgbd_frame_t>(channels_.frames, [this](const rgbd_frame_t& msg, const ReceivedInfo&) {
-    ctx_.status.received();
-    if (pending_.size() >= capacity_) {  // bounded: the oldest waiting frame gives way
-      pending_.pop_front();
-      ctx_.status.dropped();
-    }
-    pending_.push_back(msg);
+    ++received_;
+    queue_.push(msg);
   });
+  receiver_ = std::thread([this] { receive(); });
+}
+
+TrackerNode::~TrackerNode() {
+  receiving_ = false;
+  queue_.close();
+  if (receiver_.joinable()) receiver_.join();
+}
+
+void TrackerNode::receive() {
+  while (receiving_ && !ctx_.stop.requested()) {
+    if (!ctx_.lcm.handle(100)) {
+      log::error("LCM receive failed; stopping");
+      ctx_.stop.request();
+    }
+  }
+}
+
+void TrackerNode::syncStatus() {
+  const int64_t received = received_.load();
+  const auto dropped = static_cast<int64_t>(queue_.dropped());
+  ctx_.status.received(received - received_reported_);
+  ctx_.status.dropped(dropped - dropped_reported_);
+  received_reported_ = received;
+  dropped_reported_ = dropped;
 }
 
 void TrackerNode::run(double idle_exit_s) {
   Stopwatch idle;
   while (!ctx_.stop.requested()) {
-    ctx_.lcm.handle(pending_.empty() ? 100 : 0);
-    if (!pending_.empty()) {
-      const rgbd_frame_t msg = std::move(pending_.front());
-      pending_.pop_front();
-      process(msg);
+    std::optional<rgbd_frame_t> msg = queue_.popFor(std::chrono::milliseconds(100));
+    syncStatus();
+    if (msg) {
+      process(*msg);
       idle.restart();
     } else if (idle_exit_s > 0 && tracker_ && idle.elapsedMs() > idle_exit_s * 1000.0) {
       log::info("no frame for ", idle_exit_s, " s: finishing");
@@ -45,11 +65,30 @@ void TrackerNode::run(double idle_exit_s) {
     }
     ctx_.status.tick();
   }
+  receiving_ = false;
   if (tracker_) tracker_->finish();
-  log::info("tracked ", timing_.count(), " frames, ", lost_, " lost; tracking ", timing_.summary());
+  log::info("tracked ", timing_.count(), " frames, ", lost_, " lost; ", stream_.lostBefore(),
+            " frame(s) never arrived, ", queue_.dropped(), " dropped while busy, ", stream_.refused(),
+            " refused; tracking ", timing_.summary());
+}
+
+void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
+  ctx_.status.malformed();
+  ctx_.status.setMessage(reason);
+  log::warn(reason, "; skipped");
+  ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));  // answered all the same
+  ctx_.status.published();
 }
 
 void TrackerNode::process(const rgbd_frame_t& msg) {
+  const FrameStream::Verdict verdict = stream_.accept(msg);
+  if (!verdict.reason.empty() && verdict.ok) log::warn(verdict.reason);
+  if (verdict.lost_before > 0) {
+    // The constant-velocity prediction spans one frame; after a gap it would point the wrong way.
+    log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
+    if (tracker_) tracker_->forgetMotion();
+  }
+  if (!verdict.ok) return skip(msg, verdict.reason);
   cv::Mat color, depth;
   try {
     color = decodeImage(fromMsg(msg.color));
@@ -57,12 +96,7 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
     if (depth.type() != CV_16UC1 || depth.size() != color.size())
       throw ImageError("depth is not 16-bit at colour size");
   } catch (const ImageError& e) {
-    ctx_.status.malformed();
-    ctx_.status.setMessage(std::string("frame ") + std::to_string(msg.seq) + ": " + e.what());
-    log::warn("frame ", msg.seq, ": ", e.what(), "; skipped");
-    ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg));  // answered all the same
-    ctx_.status.published();
-    return;
+    return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + e.what());
   }
   if (!tracker_) {
     const CameraIntrinsics camera = fromMsg(msg.camera, msg.depth_scale);
@@ -77,7 +111,12 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
+  publish(msg, r, color, depth);
+  ctx_.status.processed();
+}
 
+void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color,
+                          const cv::Mat& depth) {
   // On disk before it is announced: whoever saw the pose finds it in the file even if we are killed now.
   if (live_trajectory_ && r.ok()) live_trajectory_->append({r.stamp, r.T_world_cam});
   if (live_keyframes_ && r.new_keyframe)
@@ -93,7 +132,6 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
     ctx_.lcm.publish(channels_.keyframe_poses, toKeyFramePosesMessage(msg.utime, r.keyframe_updates));
     ctx_.status.published();
   }
-  ctx_.status.processed();
 }
 
 void TrackerNode::writeTrajectories() {

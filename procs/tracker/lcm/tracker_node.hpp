@@ -1,15 +1,20 @@
 #pragma once
-// bmp-tracker's LCM side: frames in (a bounded queue, oldest gives way), the Tracker called on each, its
-// results out as messages. The process's main only reads configuration and runs it.
-#include <deque>
+// bmp-tracker's LCM side: a receive thread drains the LCM socket into a bounded queue (the oldest waiting
+// frame gives way, counted), so a slow frame becomes a counted drop here instead of a silent loss in the
+// kernel's buffer; the main thread checks each frame (frame_checks.hpp), tracks it and publishes the
+// results. The process's main only reads configuration and runs it.
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include <bmp/rgbd_frame_t.hpp>
 
+#include "bmp/common/bounded_queue.hpp"
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tum_trajectory.hpp"
+#include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/process.hpp"
 #include "tracker/tracker.hpp"
 #include "tracker/tracker_options.hpp"
@@ -35,6 +40,9 @@ class TrackerNode {
   // Opens the outputs at once: an unwritable path fails at start-up, naming it (TrajectoryError).
   TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels, std::size_t queue_capacity,
               const TrackerOutputs& outputs);
+  ~TrackerNode();  // stops the receive thread
+  TrackerNode(const TrackerNode&) = delete;
+  TrackerNode& operator=(const TrackerNode&) = delete;
 
   // Until a stop is requested, or idle_exit_s (> 0) seconds pass without a frame after the first.
   void run(double idle_exit_s);
@@ -42,13 +50,21 @@ class TrackerNode {
   void writeTrajectories();
 
  private:
+  void receive();  // the receive thread's loop
   void process(const rgbd_frame_t& msg);
+  void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth);
+  // Answers a frame that cannot be tracked with STATE_SKIPPED and the reason, warns and counts it.
+  void skip(const rgbd_frame_t& msg, const std::string& reason);
+  void syncStatus();  // the receive thread's counts into the heartbeat (main thread only)
 
   ProcessContext& ctx_;
   TrackerConfig config_;
   TrackerChannels channels_;
-  std::size_t capacity_;
-  std::deque<rgbd_frame_t> pending_;
+  BoundedQueue<rgbd_frame_t> queue_;
+  std::atomic<bool> receiving_{true};
+  std::atomic<int64_t> received_{0};
+  int64_t received_reported_ = 0, dropped_reported_ = 0;
+  FrameStream stream_;
   std::unique_ptr<Tracker> tracker_;
   cv::Mat empty_mask_;  // no dynamic handling yet: nothing is masked
   TrackerOutputs outputs_;
@@ -56,6 +72,7 @@ class TrackerNode {
   std::optional<TumTrajectoryStream> live_keyframes_;
   TimingStats timing_;
   int64_t lost_ = 0;
+  std::thread receiver_;  // last: started once everything it uses exists
 };
 
 }  // namespace bmp::tracker

@@ -6,6 +6,7 @@
 //                capacity 1 the newest item replaces the waiting one.
 // tryPush() never waits and never displaces anything: a full queue refuses the new item instead.
 // The consumer blocks in pop() until an item arrives or the queue is closed, or polls with tryPop().
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -61,6 +62,14 @@ class BoundedQueue {
   std::optional<T> pop() {
     std::unique_lock<std::mutex> lock(mutex_);
     ready_.wait(lock, [this] { return closed_ || !items_.empty(); });
+    return takeFront(lock);
+  }
+
+  // Waits at most timeout for an item; nullopt when none came (or closed and drained).
+  template <typename Rep, typename Period>
+  std::optional<T> popFor(std::chrono::duration<Rep, Period> timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    ready_.wait_for(lock, timeout, [this] { return closed_ || !items_.empty(); });
     return takeFront(lock);
   }
 
