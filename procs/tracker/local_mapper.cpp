@@ -132,7 +132,7 @@ void LocalMapper::fuseWithNeighbours(KeyFrame* kf, std::unique_lock<std::mutex>&
     std::vector<std::shared_ptr<MapPoint>> mine;
     for (const auto& mp : kf->points)
       if (mp && !mp->bad) mine.push_back(mp);
-    fusePoints(map_, target, mine, g, 3.0, chi2);
+    fusePoints(map_, target, mine, g, config_.matcher, 3.0, chi2);
   }
   // ... and the neighbours' points into this keyframe.
   std::vector<std::shared_ptr<MapPoint>> theirs;
@@ -140,7 +140,7 @@ void LocalMapper::fuseWithNeighbours(KeyFrame* kf, std::unique_lock<std::mutex>&
   for (KeyFrame* target : targets)
     for (const auto& mp : target->points)
       if (mp && !mp->bad && added.insert(mp.get()).second) theirs.push_back(mp);
-  fusePoints(map_, kf, theirs, g, 3.0, chi2);
+  fusePoints(map_, kf, theirs, g, config_.matcher, 3.0, chi2);
   for (const auto& mp : kf->points) {
     if (!mp || mp->bad) continue;
     mp->updateDescriptor();

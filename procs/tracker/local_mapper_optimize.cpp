@@ -102,7 +102,8 @@ int LocalMapper::triangulate(KeyFrame* kf, std::unique_lock<std::mutex>& lock) {
     KeyFrame* nb = nb_shared.get();
     if (nb->bad || kf->bad) continue;
     if ((nb->center() - c1).norm() < config_.tracking.virtual_baseline_m) continue;
-    const auto pairs = matchForTriangulation(*kf, *nb, g, config_.tracking.match_threshold_low, 0.6);
+    const auto pairs = matchForTriangulation(*kf, *nb, g, config_.tracking.match_threshold_low, 0.6,
+                                             config_.matcher.epipolar_chi2);
     const Features& f1 = *kf->features;
     const Features& f2 = *nb->features;
     for (const auto& [i1, i2] : pairs) {

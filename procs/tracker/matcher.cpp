@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <unordered_set>
 
 namespace bmp::tracker {
@@ -44,6 +45,80 @@ bool isRealPoint(const std::shared_ptr<MapPoint>& mp) {
   return mp && !mp->bad && !mp->observations.empty();
 }
 
+// Where a point lands in a view: pixel and virtual right-image coordinate.
+struct Projection {
+  Eigen::Vector2d uv;
+  double u_right = 0.0;
+};
+
+// Nothing when the point is behind the camera or outside the image.
+std::optional<Projection> project(const SE3& T_cam_world, const Eigen::Vector3d& p_world,
+                                  const FrameGeometry& g) {
+  const Eigen::Vector3d p_cam = T_cam_world * p_world;
+  if (p_cam.z() <= 0.0) return std::nullopt;
+  const Eigen::Vector2d uv = g.project(p_cam);
+  if (!g.inBounds(uv.x(), uv.y())) return std::nullopt;
+  return Projection{uv, uv.x() - g.bf / p_cam.z()};
+}
+
+// Whether the view sees the point within the distances its descriptor was made for.
+bool inScaleRange(const MapPoint& mp, double dist, const MatcherOptions& m) {
+  return !(dist < m.min_distance_factor * mp.min_distance || dist > m.max_distance_factor * mp.max_distance);
+}
+
+// How candidates near a projection are gated. Tracking skips keypoints that already hold a real point and
+// requires a depth keypoint's right-image coordinate within the radius; fusion instead gates by the
+// reprojection error (u, v and u_right against chi2), and may pick an observed keypoint (it then merges).
+enum class Gate { kTracking, kReprojection };
+
+struct SearchWindow {
+  double radius = 0.0;                 // pixels
+  int min_level = -1, max_level = -1;  // as Features::inArea
+  Gate gate = Gate::kTracking;
+  const std::vector<std::shared_ptr<MapPoint>>* occupied = nullptr;  // kTracking: the view's matches
+  double chi2 = 0.0;                                                 // kReprojection
+};
+
+struct SearchResult {
+  int best = -1, best_dist = 256, best_level = -1;
+  int second_dist = 256, second_level = -1;
+};
+
+bool passesGate(const Features& f, const FrameGeometry& g, const Projection& p, const SearchWindow& w,
+                int j) {
+  if (w.gate == Gate::kReprojection) {
+    double e2 = (f.un[j] - p.uv).squaredNorm();
+    if (f.depth[j] > 0) {
+      const double eu = p.u_right - f.uRight(g, j);
+      e2 += eu * eu;
+    }
+    return !(e2 * g.pyramid.inv_sigma2[f.level(j)] > w.chi2);
+  }
+  if (isRealPoint((*w.occupied)[j])) return false;
+  return !(f.depth[j] > 0 && std::abs(p.u_right - f.uRight(g, j)) > w.radius);
+}
+
+// The keypoints nearest in descriptor to a projected point among those in the window that pass the gate.
+SearchResult searchByProjection(const Features& f, const FrameGeometry& g, const Projection& p,
+                                const uint8_t* descriptor, const SearchWindow& w) {
+  SearchResult s;
+  for (int j : f.inArea(g, p.uv.x(), p.uv.y(), w.radius, w.min_level, w.max_level)) {
+    if (!passesGate(f, g, p, w, j)) continue;
+    const int d = hamming(descriptor, f.descriptor(j));
+    if (d < s.best_dist) {
+      s.second_dist = s.best_dist;
+      s.second_level = s.best_level;
+      s.best_dist = d;
+      s.best_level = f.level(j);
+      s.best = j;
+    } else if (d < s.second_dist) {
+      s.second_dist = d;
+      s.second_level = f.level(j);
+    }
+  }
+  return s;
+}
+
 }  // namespace
 
 int matchFromLastFrame(Frame& cur, const Frame& last, const FrameGeometry& g, const TrackingOptions& o,
@@ -55,28 +130,20 @@ int matchFromLastFrame(Frame& cur, const Frame& last, const FrameGeometry& g, co
   for (int i = 0; i < fl.size(); ++i) {
     const auto& mp = last.points[i];
     if (!mp || last.outlier[i] || mp->bad) continue;
-    const Eigen::Vector3d p_cam = cur.T_cam_world() * mp->p_world;
-    if (p_cam.z() <= 0.0) continue;
-    const Eigen::Vector2d uv = g.project(p_cam);
-    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const auto p = project(cur.T_cam_world(), mp->p_world, g);
+    if (!p) continue;
     const int level = fl.level(i);
-    const double r = radius * g.pyramid.scale[level];
-    const double ur_pred = uv.x() - g.bf / p_cam.z();
-    int best = -1, best_dist = 256;
-    for (int j : fc.inArea(g, uv.x(), uv.y(), r, std::max(0, level - 1), level + 1)) {
-      if (isRealPoint(cur.points[j])) continue;
-      if (fc.depth[j] > 0 && std::abs(ur_pred - fc.uRight(g, j)) > r) continue;
-      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), fc.descriptor(j));
-      if (d < best_dist) {
-        best_dist = d;
-        best = j;
-      }
-    }
-    if (best < 0 || best_dist > o.match_threshold_high) continue;
-    cur.points[best] = mp;
-    cur.outlier[best] = 0;
+    SearchWindow w;
+    w.radius = radius * g.pyramid.scale[level];
+    w.min_level = std::max(0, level - 1);
+    w.max_level = level + 1;
+    w.occupied = &cur.points;
+    const SearchResult s = searchByProjection(fc, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
+    if (s.best < 0 || s.best_dist > o.match_threshold_high) continue;
+    cur.points[s.best] = mp;
+    cur.outlier[s.best] = 0;
     ++matches;
-    hist.add(fl.keys[i].angle, fc.keys[best].angle, best);
+    hist.add(fl.keys[i].angle, fc.keys[s.best].angle, s.best);
   }
   if (o.check_orientation) {
     for (int j : hist.outliers()) {
@@ -90,7 +157,7 @@ int matchFromLastFrame(Frame& cur, const Frame& last, const FrameGeometry& g, co
 }
 
 int matchLocalPoints(Frame& cur, const std::vector<std::shared_ptr<MapPoint>>& points, const FrameGeometry& g,
-                     const TrackingOptions& o, double radius) {
+                     const TrackingOptions& o, const MatcherOptions& m, double radius) {
   const Features& f = *cur.features;
   std::unordered_set<const MapPoint*> already;
   for (const auto& mp : cur.points)
@@ -99,40 +166,26 @@ int matchLocalPoints(Frame& cur, const std::vector<std::shared_ptr<MapPoint>>& p
   int matches = 0;
   for (const auto& mp : points) {
     if (mp->bad || already.count(mp.get())) continue;
-    const Eigen::Vector3d p_cam = cur.T_cam_world() * mp->p_world;
-    if (p_cam.z() <= 0.0) continue;
-    const Eigen::Vector2d uv = g.project(p_cam);
-    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const auto p = project(cur.T_cam_world(), mp->p_world, g);
+    if (!p) continue;
     const Eigen::Vector3d ray = mp->p_world - center;
     const double dist = ray.norm();
-    if (dist < 0.8 * mp->min_distance || dist > 1.2 * mp->max_distance) continue;
+    if (!inScaleRange(*mp, dist, m)) continue;
     const double view_cos = ray.dot(mp->normal) / dist;
-    if (view_cos < 0.5) continue;
+    if (view_cos < m.min_view_cos) continue;
     ++mp->visible;
     const int level = mp->predictLevel(dist, g);
+    SearchWindow w;
     // A wider window when the point is seen from a direction far from its usual one.
-    const double r = radius * g.pyramid.scale[level] * (view_cos > 0.998 ? 1.0 : 1.6);
-    const double ur_pred = uv.x() - g.bf / p_cam.z();
-    int best = -1, best_dist = 256, second_dist = 256, best_level = -1, second_level = -1;
-    for (int j : f.inArea(g, uv.x(), uv.y(), r, level - 1, level)) {
-      if (isRealPoint(cur.points[j])) continue;
-      if (f.depth[j] > 0 && std::abs(ur_pred - f.uRight(g, j)) > r) continue;
-      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), f.descriptor(j));
-      if (d < best_dist) {
-        second_dist = best_dist;
-        second_level = best_level;
-        best_dist = d;
-        best_level = f.level(j);
-        best = j;
-      } else if (d < second_dist) {
-        second_dist = d;
-        second_level = f.level(j);
-      }
-    }
-    if (best < 0 || best_dist > o.match_threshold_high) continue;
-    if (best_level == second_level && best_dist > o.local_match_ratio * second_dist) continue;
-    cur.points[best] = mp;
-    cur.outlier[best] = 0;
+    w.radius = radius * g.pyramid.scale[level] * (view_cos > m.narrow_view_cos ? 1.0 : m.wide_window_factor);
+    w.min_level = level - 1;
+    w.max_level = level;
+    w.occupied = &cur.points;
+    const SearchResult s = searchByProjection(f, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
+    if (s.best < 0 || s.best_dist > o.match_threshold_high) continue;
+    if (s.best_level == s.second_level && s.best_dist > o.local_match_ratio * s.second_dist) continue;
+    cur.points[s.best] = mp;
+    cur.outlier[s.best] = 0;
     ++matches;
   }
   return matches;
@@ -174,47 +227,35 @@ int matchByDescriptors(const Features& f, const std::vector<std::shared_ptr<MapP
 }
 
 int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoint>>& points,
-               const FrameGeometry& g, double radius, double chi2) {
+               const FrameGeometry& g, const MatcherOptions& m, double radius, double chi2) {
   const Features& f = *kf->features;
   const Eigen::Vector3d center = kf->center();
   int fused = 0;
   for (const auto& mp : points) {
     if (!mp || mp->bad || mp->observations.count(kf)) continue;
-    const Eigen::Vector3d p_cam = kf->T_cam_world() * mp->p_world;
-    if (p_cam.z() <= 0.0) continue;
-    const Eigen::Vector2d uv = g.project(p_cam);
-    if (!g.inBounds(uv.x(), uv.y())) continue;
+    const auto p = project(kf->T_cam_world(), mp->p_world, g);
+    if (!p) continue;
     const Eigen::Vector3d ray = mp->p_world - center;
     const double dist = ray.norm();
-    if (dist < 0.8 * mp->min_distance || dist > 1.2 * mp->max_distance) continue;
-    if (ray.dot(mp->normal) < 0.5 * dist) continue;
+    if (!inScaleRange(*mp, dist, m)) continue;
+    if (ray.dot(mp->normal) < m.min_view_cos * dist) continue;
     const int level = mp->predictLevel(dist, g);
-    const double r = radius * g.pyramid.scale[level];
-    const double ur_pred = uv.x() - g.bf / p_cam.z();
-    int best = -1, best_dist = 256;
-    for (int j : f.inArea(g, uv.x(), uv.y(), r, std::max(0, level - 1), level)) {
-      const double inv_s2 = g.pyramid.inv_sigma2[f.level(j)];
-      double e2 = (f.un[j] - uv).squaredNorm();
-      if (f.depth[j] > 0) {
-        const double eu = ur_pred - f.uRight(g, j);
-        e2 += eu * eu;
-      }
-      if (e2 * inv_s2 > chi2) continue;
-      const int d = hamming(mp->descriptor.ptr<uint8_t>(0), f.descriptor(j));
-      if (d < best_dist) {
-        best_dist = d;
-        best = j;
-      }
-    }
-    if (best < 0 || best_dist > 50) continue;
-    const auto existing = kf->points[best];
+    SearchWindow w;
+    w.radius = radius * g.pyramid.scale[level];
+    w.min_level = std::max(0, level - 1);
+    w.max_level = level;
+    w.gate = Gate::kReprojection;
+    w.chi2 = chi2;
+    const SearchResult s = searchByProjection(f, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
+    if (s.best < 0 || s.best_dist > m.fuse_max_distance) continue;
+    const auto existing = kf->points[s.best];
     if (existing && !existing->bad) {
       if (existing->observations.size() >= mp->observations.size())
         map.replacePoint(mp, existing);
       else
         map.replacePoint(existing, mp);
     } else {
-      map.addObservation(kf, best, mp);
+      map.addObservation(kf, s.best, mp);
     }
     ++fused;
   }
@@ -222,8 +263,8 @@ int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoin
 }
 
 std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, const KeyFrame& kf2,
-                                                       const FrameGeometry& g, int max_distance,
-                                                       double ratio) {
+                                                       const FrameGeometry& g, int max_distance, double ratio,
+                                                       double epipolar_chi2) {
   const Features& f1 = *kf1.features;
   const Features& f2 = *kf2.features;
   // Essential matrix from kf1's normalised coordinates to kf2's: x2^T E x1 = 0.
@@ -247,7 +288,7 @@ std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, cons
       if (d >= second_dist) continue;
       const Eigen::Vector3d x2((f2.un[j].x() - g.cx) / g.fx, (f2.un[j].y() - g.cy) / g.fy, 1.0);
       const double dist_px = std::abs(line.dot(x2)) / line_norm * g.fx;
-      if (dist_px * dist_px > 3.84 * g.pyramid.sigma2[f2.level(j)]) continue;
+      if (dist_px * dist_px > epipolar_chi2 * g.pyramid.sigma2[f2.level(j)]) continue;
       if (d < best_dist) {
         second_dist = best_dist;
         best_dist = d;

@@ -20,7 +20,8 @@ int matchFromLastFrame(Frame& current, const Frame& last, const FrameGeometry& g
 // Projects map points not yet matched in `current` and matches those inside the view frustum. Counts each
 // point seen in the frustum as visible. Returns the number of new matches.
 int matchLocalPoints(Frame& current, const std::vector<std::shared_ptr<MapPoint>>& points,
-                     const FrameGeometry& g, const TrackingOptions& o, double radius);
+                     const FrameGeometry& g, const TrackingOptions& o, const MatcherOptions& m,
+                     double radius);
 
 // Pose-free matching: for each point, the frame keypoint with the closest descriptor, accepted under
 // `max_distance` and the ratio test; each keypoint keeps its best point. Fills empty slots of `matches`
@@ -31,12 +32,13 @@ int matchByDescriptors(const Features& features, const std::vector<std::shared_p
 // Projects points into kf: an unobserved keypoint gains the observation, an observed one is merged with
 // the point (the one with fewer observations is replaced). Returns merges + new observations.
 int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoint>>& points,
-               const FrameGeometry& g, double radius, double chi2);
+               const FrameGeometry& g, const MatcherOptions& m, double radius, double chi2);
 
 // Keypoints of kf1 and kf2 without map points whose descriptors agree and which lie near each other's
-// epipolar line. Returns index pairs (kf1, kf2).
+// epipolar line (squared pixel distance under epipolar_chi2 times the level's sigma^2). Returns index
+// pairs (kf1, kf2).
 std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, const KeyFrame& kf2,
-                                                       const FrameGeometry& g, int max_distance,
-                                                       double ratio);
+                                                       const FrameGeometry& g, int max_distance, double ratio,
+                                                       double epipolar_chi2);
 
 }  // namespace bmp::tracker

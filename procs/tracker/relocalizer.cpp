@@ -101,7 +101,7 @@ std::shared_ptr<KeyFrame> relocalize(Frame& frame, const Map& map, const FrameGe
     for (KeyFrame* k : around)
       for (const auto& mp : k->points)
         if (mp && !mp->bad && seen.insert(mp.get()).second) local.push_back(mp);
-    matchLocalPoints(frame, local, g, tc, tc.reloc_search_radius * 2.0);
+    matchLocalPoints(frame, local, g, tc, config.matcher, tc.reloc_search_radius * 2.0);
     const int good = optimizeFramePose(frame, g, config.pose);
     if (good >= tc.min_inliers_after_reloc) {
       dropOutliers(frame);

@@ -1,5 +1,6 @@
 #include "tracker/tracker_config.hpp"
 
+#include <sstream>
 #include <string>
 
 namespace bmp::tracker {
@@ -7,104 +8,166 @@ namespace bmp::tracker {
 namespace {
 
 template <typename T>
-void read(const Config& c, const std::string& key, T& value) {
+std::string text(T value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Each reader keeps the struct's default when the key is absent, then checks the value it ended with.
+void read(const Config& c, const std::string& key, bool& value) {
+  value = c.get<bool>(key, value);
+}
+
+template <typename T>
+void readIn(const Config& c, const std::string& key, T& value, T lo, T hi) {
   value = c.get<T>(key, value);
+  c.check(value >= lo && value <= hi, key, "must be in [" + text(lo) + ", " + text(hi) + "]");
+}
+
+template <typename T>
+void readAtLeast(const Config& c, const std::string& key, T& value, T lo) {
+  value = c.get<T>(key, value);
+  c.check(value >= lo, key, "must be at least " + text(lo));
+}
+
+void readPositive(const Config& c, const std::string& key, double& value) {
+  value = c.get<double>(key, value);
+  c.check(value > 0.0, key, "must be positive");
+}
+
+void readFraction(const Config& c, const std::string& key, double& value) {
+  readIn(c, key, value, 0.0, 1.0);
 }
 
 void readSize(const Config& c, const std::string& key, std::size_t& value) {
-  const int v = c.get<int>(key, static_cast<int>(value));
-  if (v < 1) throw ConfigError(c.origin() + ": key '" + c.path(key) + "' must be at least 1");
+  int v = static_cast<int>(value);
+  readAtLeast(c, key, v, 1);
   value = static_cast<std::size_t>(v);
+}
+
+constexpr int kMaxHamming = 256;  // bits of an ORB descriptor
+
+OrbOptions orbOptions(const Config& c) {
+  OrbOptions o;
+  readAtLeast(c, "num_features", o.num_features, 50);
+  readIn(c, "num_levels", o.num_levels, 1, 12);
+  o.scale_factor = c.get<double>("scale_factor", o.scale_factor);
+  c.check(o.scale_factor > 1.0 && o.scale_factor < 2.0, "scale_factor", "must be in (1, 2)");
+  readIn(c, "fast_threshold", o.fast_threshold, 1, 255);
+  readIn(c, "fast_min_threshold", o.fast_min_threshold, 1, 255);
+  c.check(o.fast_min_threshold <= o.fast_threshold, "fast_min_threshold", "must not exceed fast_threshold");
+  readAtLeast(c, "cell_size", o.cell_size, 10);
+  return o;
+}
+
+TrackingOptions trackingOptions(const Config& c) {
+  TrackingOptions o;
+  readPositive(c, "min_depth_m", o.min_depth_m);
+  readPositive(c, "max_depth_m", o.max_depth_m);
+  c.check(o.max_depth_m > o.min_depth_m, "max_depth_m", "must exceed min_depth_m");
+  readPositive(c, "close_depth_m", o.close_depth_m);
+  readPositive(c, "virtual_baseline_m", o.virtual_baseline_m);
+  readAtLeast(c, "init_min_keypoints", o.init_min_keypoints, 1);
+  readAtLeast(c, "motion_search_radius", o.motion_search_radius, 1);
+  readAtLeast(c, "local_search_radius", o.local_search_radius, 1);
+  readAtLeast(c, "reloc_search_radius", o.reloc_search_radius, 1);
+  readIn(c, "match_threshold_high", o.match_threshold_high, 0, kMaxHamming);
+  readIn(c, "match_threshold_low", o.match_threshold_low, 0, kMaxHamming);
+  c.check(o.match_threshold_low <= o.match_threshold_high, "match_threshold_low",
+          "must not exceed match_threshold_high");
+  readIn(c, "local_match_ratio", o.local_match_ratio, 0.0, 1.0);
+  readIn(c, "descriptor_match_ratio", o.descriptor_match_ratio, 0.0, 1.0);
+  read(c, "check_orientation", o.check_orientation);
+  readAtLeast(c, "min_matches_motion", o.min_matches_motion, 0);
+  readAtLeast(c, "min_inliers_motion", o.min_inliers_motion, 0);
+  readAtLeast(c, "min_inliers_local_map", o.min_inliers_local_map, 0);
+  readAtLeast(c, "min_inliers_after_reloc", o.min_inliers_after_reloc, 0);
+  readAtLeast(c, "max_local_keyframes", o.max_local_keyframes, 1);
+  readAtLeast(c, "temporal_points", o.temporal_points, 0);
+  return o;
+}
+
+MatcherOptions matcherOptions(const Config& c) {
+  MatcherOptions o;
+  readIn(c, "min_distance_factor", o.min_distance_factor, 0.0, 1.0);
+  readAtLeast(c, "max_distance_factor", o.max_distance_factor, 1.0);
+  readIn(c, "min_view_cos", o.min_view_cos, -1.0, 1.0);
+  readIn(c, "narrow_view_cos", o.narrow_view_cos, -1.0, 1.0);
+  c.check(o.min_view_cos <= o.narrow_view_cos, "min_view_cos", "must not exceed narrow_view_cos");
+  readAtLeast(c, "wide_window_factor", o.wide_window_factor, 1.0);
+  readIn(c, "fuse_max_distance", o.fuse_max_distance, 0, kMaxHamming);
+  readPositive(c, "epipolar_chi2", o.epipolar_chi2);
+  return o;
+}
+
+PoseOptimizerOptions poseOptions(const Config& c) {
+  PoseOptimizerOptions o;
+  readAtLeast(c, "rounds", o.rounds, 1);
+  readAtLeast(c, "iterations_per_round", o.iterations_per_round, 1);
+  readPositive(c, "chi2_mono", o.chi2_mono);
+  readPositive(c, "chi2_rgbd", o.chi2_rgbd);
+  readAtLeast(c, "consensus_iterations", o.consensus_iterations, 0);
+  readPositive(c, "consensus_chi2_factor", o.consensus_chi2_factor);
+  readAtLeast(c, "mature_observations", o.mature_observations, 0);
+  readAtLeast(c, "mature_span_s", o.mature_span_s, 0.0);
+  o.young_point_weight = c.get<double>("young_point_weight", o.young_point_weight);
+  c.check(o.young_point_weight > 0.0 && o.young_point_weight <= 1.0, "young_point_weight",
+          "must be in (0, 1]");
+  return o;
+}
+
+KeyframeOptions keyframeOptions(const Config& c) {
+  KeyframeOptions o;
+  readAtLeast(c, "max_frames", o.max_frames, 1);
+  readAtLeast(c, "min_frames", o.min_frames, 0);
+  c.check(o.min_frames <= o.max_frames, "min_frames", "must not exceed max_frames");
+  readFraction(c, "ref_ratio", o.ref_ratio);
+  readAtLeast(c, "close_tracked_max", o.close_tracked_max, 0);
+  readAtLeast(c, "close_untracked_min", o.close_untracked_min, 0);
+  readAtLeast(c, "new_points_min", o.new_points_min, 0);
+  return o;
+}
+
+MappingOptions mappingOptions(const Config& c) {
+  MappingOptions o;
+  read(c, "threaded", o.threaded);
+  readSize(c, "queue_capacity", o.queue_capacity);
+  readAtLeast(c, "ba_window", o.ba_window, 1);
+  readAtLeast(c, "ba_iterations_first", o.ba_iterations_first, 0);
+  readAtLeast(c, "ba_iterations_second", o.ba_iterations_second, 0);
+  readAtLeast(c, "covisibility_min_weight", o.covisibility_min_weight, 1);
+  readAtLeast(c, "triangulation_neighbors", o.triangulation_neighbors, 0);
+  readAtLeast(c, "fuse_neighbors", o.fuse_neighbors, 0);
+  readFraction(c, "point_found_ratio", o.point_found_ratio);
+  readAtLeast(c, "point_min_observations", o.point_min_observations, 0);
+  readFraction(c, "keyframe_redundancy", o.keyframe_redundancy);
+  return o;
+}
+
+RelocalizationOptions relocalizationOptions(const Config& c) {
+  RelocalizationOptions o;
+  readAtLeast(c, "candidates", o.candidates, 1);
+  readAtLeast(c, "score_descriptors", o.score_descriptors, 1);
+  // PnP needs four correspondences.
+  readAtLeast(c, "min_matches", o.min_matches, 4);
+  readAtLeast(c, "ransac_iterations", o.ransac_iterations, 1);
+  readPositive(c, "ransac_reprojection_px", o.ransac_reprojection_px);
+  readAtLeast(c, "min_pnp_inliers", o.min_pnp_inliers, 4);
+  return o;
 }
 
 }  // namespace
 
 TrackerConfig trackerConfigFromConfig(const Config& section) {
   TrackerConfig cfg;
-  const Config orb = section.section("orb");
-  read(orb, "num_features", cfg.orb.num_features);
-  read(orb, "num_levels", cfg.orb.num_levels);
-  read(orb, "scale_factor", cfg.orb.scale_factor);
-  read(orb, "fast_threshold", cfg.orb.fast_threshold);
-  read(orb, "fast_min_threshold", cfg.orb.fast_min_threshold);
-  read(orb, "cell_size", cfg.orb.cell_size);
-  orb.check(cfg.orb.num_features >= 50, "num_features", "must be at least 50");
-  orb.check(cfg.orb.num_levels >= 1 && cfg.orb.num_levels <= 12, "num_levels", "must be in 1..12");
-  orb.check(cfg.orb.scale_factor > 1.0 && cfg.orb.scale_factor < 2.0, "scale_factor", "must be in (1, 2)");
-  orb.check(cfg.orb.cell_size >= 10, "cell_size", "must be at least 10");
-
-  const Config t = section.section("tracking");
-  auto& tr = cfg.tracking;
-  read(t, "min_depth_m", tr.min_depth_m);
-  read(t, "max_depth_m", tr.max_depth_m);
-  read(t, "close_depth_m", tr.close_depth_m);
-  read(t, "virtual_baseline_m", tr.virtual_baseline_m);
-  read(t, "init_min_keypoints", tr.init_min_keypoints);
-  read(t, "motion_search_radius", tr.motion_search_radius);
-  read(t, "local_search_radius", tr.local_search_radius);
-  read(t, "reloc_search_radius", tr.reloc_search_radius);
-  read(t, "match_threshold_high", tr.match_threshold_high);
-  read(t, "match_threshold_low", tr.match_threshold_low);
-  read(t, "local_match_ratio", tr.local_match_ratio);
-  read(t, "descriptor_match_ratio", tr.descriptor_match_ratio);
-  read(t, "check_orientation", tr.check_orientation);
-  read(t, "min_matches_motion", tr.min_matches_motion);
-  read(t, "min_inliers_motion", tr.min_inliers_motion);
-  read(t, "min_inliers_local_map", tr.min_inliers_local_map);
-  read(t, "min_inliers_after_reloc", tr.min_inliers_after_reloc);
-  read(t, "max_local_keyframes", tr.max_local_keyframes);
-  read(t, "temporal_points", tr.temporal_points);
-  t.check(tr.min_depth_m > 0 && tr.max_depth_m > tr.min_depth_m, "max_depth_m",
-          "must exceed min_depth_m > 0");
-  t.check(tr.close_depth_m > 0, "close_depth_m", "must be positive");
-  t.check(tr.virtual_baseline_m > 0, "virtual_baseline_m", "must be positive");
-
-  const Config p = section.section("pose_optimizer");
-  read(p, "rounds", cfg.pose.rounds);
-  read(p, "iterations_per_round", cfg.pose.iterations_per_round);
-  read(p, "chi2_mono", cfg.pose.chi2_mono);
-  read(p, "chi2_rgbd", cfg.pose.chi2_rgbd);
-  read(p, "consensus_iterations", cfg.pose.consensus_iterations);
-  read(p, "consensus_chi2_factor", cfg.pose.consensus_chi2_factor);
-  read(p, "mature_observations", cfg.pose.mature_observations);
-  read(p, "mature_span_s", cfg.pose.mature_span_s);
-  read(p, "young_point_weight", cfg.pose.young_point_weight);
-  p.check(cfg.pose.young_point_weight > 0.0 && cfg.pose.young_point_weight <= 1.0, "young_point_weight",
-          "must be in (0, 1]");
-  p.check(cfg.pose.rounds >= 1, "rounds", "must be at least 1");
-  p.check(cfg.pose.mature_span_s >= 0.0, "mature_span_s", "must not be negative");
-  p.check(cfg.pose.mature_observations >= 0, "mature_observations", "must not be negative");
-
-  const Config k = section.section("keyframes");
-  read(k, "max_frames", cfg.keyframes.max_frames);
-  read(k, "min_frames", cfg.keyframes.min_frames);
-  read(k, "ref_ratio", cfg.keyframes.ref_ratio);
-  read(k, "close_tracked_max", cfg.keyframes.close_tracked_max);
-  read(k, "close_untracked_min", cfg.keyframes.close_untracked_min);
-  read(k, "new_points_min", cfg.keyframes.new_points_min);
-
-  const Config m = section.section("mapping");
-  auto& mp = cfg.mapping;
-  read(m, "threaded", mp.threaded);
-  readSize(m, "queue_capacity", mp.queue_capacity);
-  read(m, "ba_window", mp.ba_window);
-  read(m, "ba_iterations_first", mp.ba_iterations_first);
-  read(m, "ba_iterations_second", mp.ba_iterations_second);
-  read(m, "covisibility_min_weight", mp.covisibility_min_weight);
-  read(m, "triangulation_neighbors", mp.triangulation_neighbors);
-  read(m, "fuse_neighbors", mp.fuse_neighbors);
-  read(m, "point_found_ratio", mp.point_found_ratio);
-  read(m, "point_min_observations", mp.point_min_observations);
-  read(m, "keyframe_redundancy", mp.keyframe_redundancy);
-  m.check(mp.ba_window >= 1, "ba_window", "must be at least 1");
-
-  const Config r = section.section("relocalization");
-  read(r, "candidates", cfg.reloc.candidates);
-  read(r, "score_descriptors", cfg.reloc.score_descriptors);
-  read(r, "min_matches", cfg.reloc.min_matches);
-  read(r, "ransac_iterations", cfg.reloc.ransac_iterations);
-  read(r, "ransac_reprojection_px", cfg.reloc.ransac_reprojection_px);
-  read(r, "min_pnp_inliers", cfg.reloc.min_pnp_inliers);
+  cfg.orb = orbOptions(section.section("orb"));
+  cfg.tracking = trackingOptions(section.section("tracking"));
+  cfg.matcher = matcherOptions(section.section("matcher"));
+  cfg.pose = poseOptions(section.section("pose_optimizer"));
+  cfg.keyframes = keyframeOptions(section.section("keyframes"));
+  cfg.mapping = mappingOptions(section.section("mapping"));
+  cfg.reloc = relocalizationOptions(section.section("relocalization"));
   return cfg;
 }
 

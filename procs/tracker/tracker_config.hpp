@@ -1,6 +1,7 @@
 #pragma once
 // TrackerConfig from a configuration section (config/tracker.yaml). Absent keys keep the struct's defaults;
-// values out of range throw ConfigError naming the key.
+// every value is checked (ranges, min <= max pairs) and one out of range throws ConfigError naming file and
+// key.
 #include "bmp/common/config.hpp"
 #include "tracker/tracker_options.hpp"
 

@@ -36,6 +36,19 @@ struct TrackingOptions {
   int temporal_points = 0;               // nearest depth points made temporary in the last frame (0: off)
 };
 
+// Projection search (matcher.cpp): which map points are worth looking for in a view, and how wide to look.
+struct MatcherOptions {
+  // A point is looked for between these factors times the distances its descriptor suits
+  // (MapPoint::min_distance, max_distance), and only from within this angle of its mean viewing direction.
+  double min_distance_factor = 0.8;
+  double max_distance_factor = 1.2;
+  double min_view_cos = 0.5;
+  double narrow_view_cos = 0.998;   // local map: above this cosine the window keeps its radius ...
+  double wide_window_factor = 1.6;  // ... below it, it widens by this factor
+  int fuse_max_distance = 50;       // Hamming distance accepted when fusing duplicates
+  double epipolar_chi2 = 3.84;      // triangulation: squared distance to the epipolar line / sigma^2 (1 dof)
+};
+
 struct PoseOptimizerOptions {
   int rounds = 4;  // optimisation rounds with outlier re-classification
   int iterations_per_round = 10;
@@ -83,6 +96,7 @@ struct RelocalizationOptions {
 struct TrackerConfig {
   OrbOptions orb;
   TrackingOptions tracking;
+  MatcherOptions matcher;
   PoseOptimizerOptions pose;
   KeyframeOptions keyframes;
   MappingOptions mapping;

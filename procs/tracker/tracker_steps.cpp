@@ -127,7 +127,7 @@ bool Tracker::trackLocalMap(Frame& frame) {
   const auto& o = config_.tracking;
   updateLocalMap(frame);
   const bool after_reloc = frame.seq - last_reloc_seq_ < 2 || state_ == TrackingState::kLost;
-  matchLocalPoints(frame, local_points_, *geometry_, o,
+  matchLocalPoints(frame, local_points_, *geometry_, o, config_.matcher,
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
   optimizeFramePose(frame, *geometry_, config_.pose);
   int inliers = 0;

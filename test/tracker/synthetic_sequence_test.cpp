@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "capture/synthetic_scene.hpp"
-#include "tracker/offline_runner.hpp"
-#include "tracker/trajectory_eval.hpp"
+#include "eval/ate.hpp"
+#include "tracker_offline/offline_runner.hpp"
 
 namespace bmp::tracker {
 namespace {
@@ -37,7 +37,7 @@ TEST(TrackerSynthetic, StaticSceneAteBelow5mm) {
   ASSERT_EQ(result.frames, 240);
   EXPECT_EQ(result.frames_lost, 0);
   EXPECT_EQ(result.trajectory.size(), 240u);
-  const AteResult ate = computeAte(result.trajectory, scene->groundTruth());
+  const eval::ErrorStats ate = eval::computeAte(scene->groundTruth(), result.trajectory).stats;
   EXPECT_LT(ate.rmse, 0.005) << "ATE RMSE " << ate.rmse;
   std::printf("synthetic static: ATE RMSE %.4f m, max %.4f m, %zu keyframes, median %.1f ms\n", ate.rmse,
               ate.max, result.keyframe_trajectory.size(), result.track_ms.median());

@@ -2,6 +2,7 @@
 // time (median, p95), frames lost and the ATE against the folder's groundtruth.txt.
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <stdexcept>
 #include <thread>
@@ -11,19 +12,16 @@
 #include "bmp/common/log.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
-#include "tracker/offline_runner.hpp"
+#include "eval/ate.hpp"
 #include "tracker/tracker_config.hpp"
-#include "tracker/trajectory_eval.hpp"
+#include "tracker_offline/offline_runner.hpp"
 
 namespace {
 
-int run(const bmp::ArgParser& args) {
-  using namespace bmp::tracker;
-  // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
-  const bmp::capture::SequenceCamera selected =
-      bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
-  const bmp::CameraIntrinsics& camera = selected.intrinsics;
-  std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
+using namespace bmp::tracker;
+
+// --config's `tracker` section (built-in defaults when --config is empty); --inline-mapping on top.
+TrackerConfig loadConfig(const bmp::ArgParser& args) {
   TrackerConfig config;
   if (!args.value("config").empty()) {
     const bmp::Config file = bmp::Config::fromFile(args.value("config"));
@@ -34,9 +32,11 @@ int run(const bmp::ArgParser& args) {
     file.finish();
   }
   if (args.flag("inline-mapping")) config.mapping.threaded = false;
+  return config;
+}
 
-  bmp::Trajectory groundtruth;
-  Tracker tracker(camera, config);
+// Progress every 100th frame (every frame with --verbose), then the --frame-gap-ms pause.
+OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   OfflineOptions options;
   options.max_frames = args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
   const bool verbose = args.flag("verbose");
@@ -50,16 +50,10 @@ int run(const bmp::ArgParser& args) {
                    static_cast<long long>(r.seq), toString(r.state), r.num_keypoints, r.num_excluded,
                    r.num_tracked, r.num_map_points, r.num_keyframes, r.processing_ms);
   };
-  const OfflineResult result =
-      runOffline(tracker,
-                 tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth,
-                                 args.flag("oracle-masks")),
-                 options);
+  return options;
+}
 
-  if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
-  if (args.given("keyframe-trajectory"))
-    bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
-
+void printRunSummary(const OfflineResult& result) {
   std::printf("frames           %d\n", result.frames);
   std::printf("frames tracked   %zu\n", result.trajectory.size());
   std::printf("frames lost      %d%s\n", result.frames_lost, result.lost_at_end ? " (lost at the end)" : "");
@@ -74,29 +68,48 @@ int run(const bmp::ArgParser& args) {
   }
   std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", wait.median(), wait.p95());
   std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", extract.median());
-  if (!groundtruth.empty() && result.trajectory.size() >= 3) {
-    const AteResult ate = computeAte(result.trajectory, groundtruth);
-    std::printf("ATE rmse m       %.4f\n", ate.rmse);
-    std::printf("ATE mean m       %.4f\n", ate.mean);
-    std::printf("ATE median m     %.4f\n", ate.median);
-    std::printf("ATE max m        %.4f\n", ate.max);
-    std::printf("ATE pairs        %d\n", ate.matched);
-    if (args.given("errors")) {
-      // Per-frame error after the global alignment: where the trajectory went wrong.
-      FILE* out = std::fopen(args.value("errors").c_str(), "w");
-      if (out == nullptr) throw std::runtime_error("cannot write " + args.value("errors"));
-      std::size_t g = 0;
-      for (const auto& p : result.trajectory) {
-        while (g + 1 < groundtruth.size() && groundtruth[g + 1].stamp <= p.stamp) ++g;
-        const Eigen::Vector3d e =
-            ate.T_gt_est * p.T_world_cam.translation() - groundtruth[g].T_world_cam.translation();
-        std::fprintf(out, "%.6f %.4f\n", p.stamp, e.norm());
-      }
-      std::fclose(out);
-    }
-  } else {
+}
+
+// Each associated frame's position error after the global alignment: where the trajectory went wrong.
+void writeErrors(const std::string& path, const bmp::eval::AteResult& ate) {
+  FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) throw std::runtime_error("cannot write " + path);
+  for (const auto& pair : ate.pairs) std::fprintf(out, "%.6f %.4f\n", pair.est_stamp, pair.error);
+  std::fclose(out);
+}
+
+void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
+              const bmp::Trajectory& groundtruth) {
+  if (groundtruth.empty() || estimate.size() < 3) {
     std::printf("ATE              n/a (no ground truth or too few poses)\n");
+    return;
   }
+  const bmp::eval::AteResult ate = bmp::eval::computeAte(groundtruth, estimate);
+  std::printf("ATE rmse m       %.4f\n", ate.stats.rmse);
+  std::printf("ATE mean m       %.4f\n", ate.stats.mean);
+  std::printf("ATE median m     %.4f\n", ate.stats.median);
+  std::printf("ATE max m        %.4f\n", ate.stats.max);
+  std::printf("ATE pairs        %zu\n", ate.pairs.size());
+  if (args.given("errors")) writeErrors(args.value("errors"), ate);
+}
+
+int run(const bmp::ArgParser& args) {
+  // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
+  const bmp::capture::SequenceCamera selected =
+      bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
+  std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
+  Tracker tracker(selected.intrinsics, loadConfig(args));
+  bmp::Trajectory groundtruth;
+  const OfflineResult result =
+      runOffline(tracker,
+                 tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth,
+                                 args.flag("oracle-masks")),
+                 offlineOptions(args));
+  if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
+  if (args.given("keyframe-trajectory"))
+    bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
+  printRunSummary(result);
+  printAte(args, result.trajectory, groundtruth);
   return 0;
 }
 
@@ -116,7 +129,8 @@ int main(int argc, char** argv) {
   args.addOption("start", "N", "skip the first N associated frames", "0");
   args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
   args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
-  args.addOption("errors", "FILE", "write each frame's position error after alignment (stamp metres)");
+  args.addOption("errors", "FILE",
+                 "write each associated frame's position error after alignment (stamp metres)");
   args.addOption("frame-gap-ms", "N", "sleep N ms after each frame (idle time, as between pipeline frames)",
                  "0");
   args.addFlag("inline-mapping", "run local mapping inline instead of in its thread (deterministic)");

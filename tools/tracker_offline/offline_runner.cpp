@@ -1,4 +1,4 @@
-#include "tracker/offline_runner.hpp"
+#include "tracker_offline/offline_runner.hpp"
 
 #include <filesystem>
 #include <memory>
