@@ -16,11 +16,6 @@ void KeyFrame::setPose(const SE3& T_world_cam) {
   T_cam_world_ = T_world_cam_.inverse();
 }
 
-SE3 KeyFrame::trajectoryPose() const {
-  if (!bad || !parent) return T_world_cam_;
-  return parent->trajectoryPose() * T_parent_self;
-}
-
 std::vector<KeyFrame*> KeyFrame::bestCovisibles(int n) const {
   const std::size_t count =
       std::min<std::size_t>(best_covisible.size(), static_cast<std::size_t>(std::max(0, n)));

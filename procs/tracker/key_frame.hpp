@@ -27,8 +27,6 @@ class KeyFrame {
   const SE3& T_world_cam() const { return T_world_cam_; }
   const SE3& T_cam_world() const { return T_cam_world_; }
   Eigen::Vector3d center() const { return T_world_cam_.translation(); }
-  // Pose for the trajectory: its own, or, once culled, through its parent chain.
-  SE3 trajectoryPose() const;
 
   // Covisibility: keyframes sharing at least `min_weight` points (or the best one).
   std::map<KeyFrame*, int, KeyFrameIdLess> connections;
@@ -37,10 +35,9 @@ class KeyFrame {
   int weight(KeyFrame* other) const;
   void sortConnections();
 
-  // Spanning tree: the parent holds a culled child's trajectory.
+  // Spanning tree: a culled keyframe's children move to its parent (Map::eraseKeyFrame).
   std::shared_ptr<KeyFrame> parent;
   std::set<KeyFrame*, KeyFrameIdLess> children;
-  SE3 T_parent_self = SE3::Identity();  // fixed when culled
   bool bad = false;
 
   // Map points observed by at least min_observations keyframes.

@@ -122,10 +122,11 @@ void Map::updateConnections(KeyFrame* kf, int min_weight) {
 
 void Map::eraseKeyFrame(const std::shared_ptr<KeyFrame>& kf, int min_weight) {
   if (kf->bad || !kf->parent) return;  // the first keyframe anchors the map
-  for (const auto& [other, w] : kf->connections) {
-    (void)w;
-    other->connections.erase(kf.get());
-    other->sortConnections();
+  // Every edge to it, including one-sided ones (updateConnections keeps the other side of an edge that fell
+  // under min_weight): the keyframe is freed once culled, so no pointer to it may stay behind.
+  for (const auto& [id, other] : keyframes_) {
+    (void)id;
+    if (other->connections.erase(kf.get()) > 0) other->sortConnections();
   }
   kf->connections.clear();
   kf->best_covisible.clear();
@@ -140,11 +141,20 @@ void Map::eraseKeyFrame(const std::shared_ptr<KeyFrame>& kf, int min_weight) {
   }
   kf->children.clear();
   kf->parent->children.erase(kf.get());
-  kf->T_parent_self = kf->parent->T_cam_world() * kf->T_world_cam();
+  culled_[kf->id] = {kf->parent->id, kf->parent->T_cam_world() * kf->T_world_cam()};
   kf->bad = true;
   keyframes_.erase(kf->id);
   keyframe_by_ptr_.erase(kf.get());
   (void)min_weight;
+}
+
+SE3 Map::trajectoryPose(int64_t id) const {
+  SE3 T_anchor_self = SE3::Identity();
+  for (auto culled = culled_.find(id); culled != culled_.end(); culled = culled_.find(id)) {
+    T_anchor_self = culled->second.T_parent_self * T_anchor_self;
+    id = culled->second.parent_id;
+  }
+  return keyframes_.at(id)->T_world_cam() * T_anchor_self;
 }
 
 std::shared_ptr<KeyFrame> Map::keyFrame(const KeyFrame* kf) const {

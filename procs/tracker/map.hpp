@@ -39,8 +39,12 @@ class Map {
   void replacePoint(const std::shared_ptr<MapPoint>& from, const std::shared_ptr<MapPoint>& to);
   // Recounts shared points and rewrites kf's covisibility edges (and the other side of each).
   void updateConnections(KeyFrame* kf, int min_weight);
-  // Culls a keyframe: detaches its observations, edges and children, keeps its trajectory via the parent.
+  // Culls a keyframe: detaches its observations, edges and children, and keeps only its pose relative to
+  // its parent (an anchor of a few bytes), so the keyframe and its features are freed once nothing else
+  // holds them while the frames tracked against it keep their place in the trajectory.
   void eraseKeyFrame(const std::shared_ptr<KeyFrame>& kf, int min_weight);
+  // The pose of keyframe `id`, live or culled (through its parent chain, so BA corrections count).
+  SE3 trajectoryPose(int64_t id) const;
 
   std::shared_ptr<KeyFrame> keyFrame(const KeyFrame* kf) const;
   std::shared_ptr<MapPoint> point(const MapPoint* mp) const;
@@ -57,6 +61,11 @@ class Map {
   std::map<int64_t, std::shared_ptr<KeyFrame>> keyframes_;
   std::unordered_map<const MapPoint*, std::shared_ptr<MapPoint>> points_;
   std::unordered_map<const KeyFrame*, std::shared_ptr<KeyFrame>> keyframe_by_ptr_;
+  struct CulledAnchor {
+    int64_t parent_id;
+    SE3 T_parent_self;
+  };
+  std::unordered_map<int64_t, CulledAnchor> culled_;
 };
 
 }  // namespace bmp::tracker

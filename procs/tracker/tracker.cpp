@@ -186,7 +186,7 @@ int Tracker::countTracked(const Frame& frame) const {
 }
 
 void Tracker::rememberFrame(const Frame& frame) {
-  records_.push_back({frame.stamp, reference_kf_, reference_kf_->T_cam_world() * frame.T_world_cam()});
+  records_.push_back({frame.stamp, reference_kf_->id, reference_kf_->T_cam_world() * frame.T_world_cam()});
   last_frame_ = frame;
   last_T_ref_cam_ = records_.back().T_ref_cam;
 }
@@ -196,7 +196,7 @@ Trajectory Tracker::trajectory() {
   Trajectory out;
   out.reserve(records_.size());
   for (const auto& r : records_)
-    out.push_back({r.stamp, normalized(r.reference->trajectoryPose() * r.T_ref_cam)});
+    out.push_back({r.stamp, normalized(map_.trajectoryPose(r.reference_id) * r.T_ref_cam)});
   return out;
 }
 

@@ -84,9 +84,11 @@ class Tracker {
   void rememberFrame(const Frame& frame);
   int countTracked(const Frame& frame) const;
 
+  // A tracked frame, relative to its reference keyframe by id: holding the keyframe itself would keep
+  // every culled keyframe and its features alive for the whole run.
   struct FrameRecord {
     double stamp;
-    std::shared_ptr<KeyFrame> reference;
+    int64_t reference_id;
     SE3 T_ref_cam;
   };
 

@@ -16,7 +16,7 @@ void Tracker::prepareLastFrame() {
     while (mp && mp->bad && mp->replaced_by) mp = mp->replaced_by;
     if (mp && (mp->bad || mp->temporary())) mp.reset();
   }
-  if (reference_kf_) last_frame_.setPose(reference_kf_->trajectoryPose() * last_T_ref_cam_);
+  if (reference_kf_) last_frame_.setPose(map_.trajectoryPose(reference_kf_->id) * last_T_ref_cam_);
   // Optionally, close keypoints of the last frame without a map point become temporary points, so the
   // motion model has enough to match where the map is thin. They never enter the map. Off by default: they
   // favour near (often moving) structure, and the map alone tracks better in dynamic scenes.
