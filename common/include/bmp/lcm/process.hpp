@@ -45,6 +45,8 @@ class StatusReporter {
   int64_t processedCount() const { return processed_; }
   int64_t droppedCount() const { return dropped_; }
   int64_t malformedCount() const { return malformed_; }
+  // Random, non-zero, chosen at construction: what --wait-for counts, as names and pids can repeat.
+  int64_t instance() const { return instance_; }
 
  private:
   void publish(int8_t state);
@@ -52,6 +54,7 @@ class StatusReporter {
   std::string name_;
   std::string channel_;
   std::string message_;
+  int64_t instance_;
   int64_t received_ = 0, processed_ = 0, dropped_ = 0, malformed_ = 0, published_ = 0;
   int64_t last_received_ = 0, last_published_ = 0;
   int64_t last_utime_ = 0;
