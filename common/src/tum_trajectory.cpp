@@ -7,56 +7,43 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace bmp {
 
-bool normalizeTumLine(std::string& line) {
-  std::replace(line.begin(), line.end(), ',', ' ');
-  std::replace(line.begin(), line.end(), '\t', ' ');
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  const auto first = line.find_first_not_of(' ');
-  return first != std::string::npos && line[first] != '#';
-}
+namespace {
 
-Trajectory parseTumTrajectory(const std::string& text, const std::string& origin) {
+const TumTextFormat kTrajectoryFormat{"trajectory file", "timestamp tx ty tz qx qy qz qw", 7, true};
+
+Trajectory toTrajectory(const std::vector<TumTextRecord>& records, const std::string& origin) {
   Trajectory out;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!normalizeTumLine(line)) continue;
-    std::istringstream fields(line);
-    double v[8];
-    int n = 0;
-    while (n < 8 && fields >> v[n]) ++n;
-    std::string extra;
-    if (n != 8 || (fields >> extra)) {
-      throw TrajectoryError(origin + ":" + std::to_string(line_no) +
-                            ": expected 'timestamp tx ty tz qx qy qz qw', got '" + line + "'");
+  for (const auto& r : records) {
+    const Eigen::Quaterniond q(r.number(6), r.number(3), r.number(4), r.number(5));
+    if (std::abs(q.norm() - 1.0) > 0.1) {
+      throw TrajectoryError(origin + ":" + std::to_string(r.line) +
+                            ": not a valid pose (quaternion far from unit length): '" + r.text + "'");
     }
-    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-    bool finite = true;
-    for (double x : v) finite = finite && std::isfinite(x);
-    if (!finite || std::abs(q.norm() - 1.0) > 0.1) {
-      throw TrajectoryError(origin + ":" + std::to_string(line_no) +
-                            ": not a valid pose (non-finite value or "
-                            "quaternion far from unit length): '" +
-                            line + "'");
-    }
-    out.push_back({v[0], makeSE3({v[1], v[2], v[3]}, q)});
+    out.push_back({r.stamp, makeSE3({r.number(0), r.number(1), r.number(2)}, q)});
   }
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.stamp < b.stamp; });
   return out;
 }
 
+}  // namespace
+
+Trajectory parseTumTrajectory(const std::string& text, const std::string& origin) {
+  try {
+    return toTrajectory(parseTumTextList(text, origin, kTrajectoryFormat), origin);
+  } catch (const TumTextError& e) {
+    throw TrajectoryError(e.what());
+  }
+}
+
 Trajectory readTumTrajectory(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw TrajectoryError(path + ": cannot open trajectory file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseTumTrajectory(text.str(), path);
+  try {
+    return toTrajectory(readTumTextList(path, kTrajectoryFormat), path);
+  } catch (const TumTextError& e) {
+    throw TrajectoryError(e.what());
+  }
 }
 
 std::string formatTumLine(const StampedPose& pose) {

@@ -69,6 +69,165 @@ inline bool enterBox(const float lo_o[3], const float hi_o[3], const float inv[3
   return true;
 }
 
+void toFloat(const Eigen::Vector3d& v, float out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
+}
+
+// The nearest surface along one pixel's ray: its distance (camera z), face, the box (null: the room) and the
+// ray's direction in the frame of what it hit.
+struct PixelHit {
+  float t = std::numeric_limits<float>::infinity();
+  int face = 0;
+  const Candidate* box = nullptr;
+  float dir[3] = {0, 0, 0};
+};
+
+// Per-frame noise: where colour channels and depth each read the noise tile, and how strong it is.
+struct FrameNoise {
+  int off[5] = {0, 0, 0, 0, 0};
+  bool color = false, depth = false;
+  float color_sigma = 0.0f, depth_sigma = 0.0f;
+};
+
+FrameNoise frameNoise(const SyntheticSceneConfig& config, int index, int margin) {
+  FrameNoise n;
+  synth::SplitMix64 rng(synth::mixSeed(static_cast<uint64_t>(config.seed), 4, static_cast<uint64_t>(index)));
+  for (int& o : n.off) o = rng.integer(0, margin - 1);
+  n.color = config.color_noise > 0, n.depth = config.depth_noise > 0;
+  n.color_sigma = static_cast<float>(config.color_noise);
+  n.depth_sigma = static_cast<float>(config.depth_noise);
+  return n;
+}
+
+// One frame's rendering: the boxes in view, then row by row a geometry pass (ray casting, depth, mask,
+// texel lookups) and a colour pass (texture samples plus noise).
+class FrameRenderer {
+ public:
+  FrameRenderer(const SyntheticSceneConfig& config, const std::vector<synth::SurfaceTexture>& textures,
+                const cv::Mat& noise, const SE3& T_world_cam, const AlignedBox& room, FrameNoise frame_noise)
+      : k_(config.camera),
+        textures_(textures),
+        noise_(noise),
+        R_(T_world_cam.linear()),
+        origin_(T_world_cam.translation()),
+        n_(frame_noise),
+        max_depth_(static_cast<float>(config.max_depth)),
+        depth_scale_(static_cast<float>(k_.depth_scale)),
+        focal_(static_cast<float>(std::sqrt(k_.fx * k_.fy))),
+        lookups_(k_.width) {
+    toFloat(room.lo - origin_, room_lo_o_);
+    toFloat(room.hi - origin_, room_hi_o_);
+    toFloat(R_.col(0), r_col0_);
+  }
+
+  // A box with its first texture; dynamic boxes move, so their rays are cast in their own frame.
+  void addBox(const AlignedBox& box, const SE3& T_world_box, int texture, bool dynamic) {
+    Candidate c;
+    c.box = box;
+    c.M = T_world_box.linear().transpose() * R_;
+    c.o = T_world_box.inverse() * origin_;
+    c.own_frame = dynamic;
+    c.texture = texture;
+    c.dynamic = dynamic;
+    toFloat(box.lo - c.o, c.lo_o);
+    toFloat(box.hi - c.o, c.hi_o);
+    toFloat(c.M.col(0), c.col_dir);
+    if (screenBounds(c, k_)) candidates_.push_back(c);
+  }
+
+  void renderRow(int v, SyntheticFrame& frame) {
+    const double yn = (v - k_.cy) / k_.fy;
+    float row_dir[3];
+    toFloat(R_.col(1) * yn + R_.col(2), row_dir);
+    selectRow(v, yn);
+    auto* depth = frame.depth.ptr<uint16_t>(v);
+    auto* mask = frame.mask.ptr<uint8_t>(v);
+    const float* noise_row = n_.color || n_.depth ? noise_.ptr<float>(v + n_.off[0]) : nullptr;
+    for (int u = 0; u < k_.width; ++u) {
+      const float xn = static_cast<float>((u - k_.cx) / k_.fx);
+      const PixelHit hit = castRay(u, xn, row_dir);
+      lookups_[u] = locateTexel(hit);
+      synth::prefetch(lookups_[u]);
+      float z = hit.t;
+      if (n_.depth) z += n_.depth_sigma * z * z * noise_row[3 * u + n_.off[4]];
+      depth[u] = z > 0 && z <= max_depth_ ? cv::saturate_cast<uint16_t>(z * depth_scale_) : 0;
+      if (hit.box && hit.box->dynamic) mask[u] = 255;
+    }
+    colourRow(frame.bgr.ptr<uint8_t>(v), noise_row);
+  }
+
+ private:
+  // The boxes whose projection covers row v, with their ray direction for the row.
+  void selectRow(int v, double yn) {
+    active_.clear();
+    for (auto& c : candidates_) {
+      if (v < c.v0 || v > c.v1) continue;
+      toFloat(c.M.col(1) * yn + c.M.col(2), c.row_dir);
+      active_.push_back(&c);
+    }
+  }
+
+  PixelHit castRay(int u, float xn, const float row_dir[3]) const {
+    PixelHit hit;
+    float d[3], inv[3];
+    for (int i = 0; i < 3; ++i) d[i] = row_dir[i] + xn * r_col0_[i], inv[i] = 1.0f / d[i];
+    // The room, from inside: the nearest wall plane ahead.
+    for (int a = 0; a < 3; ++a) {
+      const bool up = d[a] > 0;
+      const float ta = (up ? room_hi_o_[a] : room_lo_o_[a]) * inv[a];
+      if (ta < hit.t) hit.t = ta, hit.face = 2 * a + (up ? 1 : 0);
+    }
+    for (int i = 0; i < 3; ++i) hit.dir[i] = d[i];
+    for (const Candidate* c : active_) {
+      if (u < c->u0 || u > c->u1) continue;
+      float dl[3] = {d[0], d[1], d[2]}, invl[3] = {inv[0], inv[1], inv[2]};
+      if (c->own_frame)
+        for (int i = 0; i < 3; ++i) dl[i] = c->row_dir[i] + xn * c->col_dir[i], invl[i] = 1.0f / dl[i];
+      float tc = 0.0f;
+      int fc = 0;
+      if (enterBox(c->lo_o, c->hi_o, invl, hit.t, tc, fc)) {
+        hit.t = tc, hit.face = fc, hit.box = c;
+        for (int i = 0; i < 3; ++i) hit.dir[i] = dl[i];
+      }
+    }
+    return hit;
+  }
+
+  synth::TexelLookup locateTexel(const PixelHit& hit) const {
+    const float* lo_o = hit.box ? hit.box->lo_o : room_lo_o_;
+    int a = 0, b = 0;
+    synth::faceAxes(hit.face, a, b);
+    // Footprint of the pixel on the surface: t / (f * sqrt(|d . n|)) for the unnormalised direction d.
+    const float footprint = hit.t / (focal_ * std::sqrt(std::max(std::abs(hit.dir[hit.face / 2]), 1e-4f)));
+    return textures_[(hit.box ? hit.box->texture : 0) + hit.face].locate(
+        hit.t * hit.dir[a] - lo_o[a], hit.t * hit.dir[b] - lo_o[b], footprint);
+  }
+
+  // Second pass: colour, once the row's texels are on their way into the cache.
+  void colourRow(uint8_t* bgr, const float* noise_row) const {
+    for (int u = 0; u < k_.width; ++u) {
+      float colour[3];
+      synth::sample(lookups_[u], colour);
+      for (int ch = 0; ch < 3; ++ch) {
+        const float n = n_.color ? n_.color_sigma * noise_row[3 * u + ch + n_.off[1 + ch]] : 0.0f;
+        bgr[3 * u + ch] = cv::saturate_cast<uint8_t>(colour[ch] + n);
+      }
+    }
+  }
+
+  const CameraIntrinsics& k_;
+  const std::vector<synth::SurfaceTexture>& textures_;
+  const cv::Mat& noise_;
+  Eigen::Matrix3d R_;
+  Eigen::Vector3d origin_;
+  FrameNoise n_;
+  float max_depth_, depth_scale_, focal_;
+  float room_lo_o_[3] = {0, 0, 0}, room_hi_o_[3] = {0, 0, 0}, r_col0_[3] = {0, 0, 0};
+  std::vector<Candidate> candidates_;
+  std::vector<Candidate*> active_;
+  std::vector<synth::TexelLookup> lookups_;
+};
+
 }  // namespace
 
 SyntheticFrame SyntheticScene::render(int index) const {
@@ -84,111 +243,16 @@ SyntheticFrame SyntheticScene::render(int index) const {
   frame.depth.create(k.height, k.width, CV_16UC1);
   frame.mask = cv::Mat::zeros(k.height, k.width, CV_8UC1);
 
-  const Eigen::Matrix3d R = frame.T_world_cam.linear();
-  const Eigen::Vector3d origin = frame.T_world_cam.translation();
-  const auto toFloat = [](const Eigen::Vector3d& v, float out[3]) {
-    for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
-  };
-  std::vector<Candidate> candidates;
-  const auto add = [&](const AlignedBox& box, const SE3& T_world_box, int texture, bool dynamic) {
-    Candidate c;
-    c.box = box;
-    c.M = T_world_box.linear().transpose() * R;
-    c.o = T_world_box.inverse() * origin;
-    c.own_frame = dynamic;
-    c.texture = texture;
-    c.dynamic = dynamic;
-    toFloat(box.lo - c.o, c.lo_o);
-    toFloat(box.hi - c.o, c.hi_o);
-    toFloat(c.M.col(0), c.col_dir);
-    if (screenBounds(c, k)) candidates.push_back(c);
-  };
+  FrameRenderer renderer(config_, in_->textures, in_->noise, frame.T_world_cam, room_,
+                         frameNoise(config_, index, Internals::kNoiseMargin));
+  // Textures: 6 per box, the room's first, then the furniture's, then the walkers'.
   for (std::size_t i = 0; i < static_boxes_.size(); ++i)
-    add(static_boxes_[i], SE3::Identity(), 6 + 6 * static_cast<int>(i), false);
+    renderer.addBox(static_boxes_[i], SE3::Identity(), 6 + 6 * static_cast<int>(i), false);
   const auto objects = movingObjects(index);
   for (std::size_t i = 0; i < objects.size(); ++i)
-    add(objects[i].box, objects[i].T_world_object, 6 * static_cast<int>(1 + static_boxes_.size() + i), true);
-  float room_lo_o[3], room_hi_o[3], r_col0[3];
-  toFloat(room_.lo - origin, room_lo_o);
-  toFloat(room_.hi - origin, room_hi_o);
-  toFloat(R.col(0), r_col0);
-
-  // Noise offsets for this frame: colour channels and depth each read the tile at their own offset.
-  synth::SplitMix64 rng(synth::mixSeed(static_cast<uint64_t>(config_.seed), 4, static_cast<uint64_t>(index)));
-  int off[5];
-  for (int& o : off) o = rng.integer(0, Internals::kNoiseMargin - 1);
-  const bool color_noise = config_.color_noise > 0, depth_noise = config_.depth_noise > 0;
-  const float color_sigma = static_cast<float>(config_.color_noise);
-  const float depth_sigma = static_cast<float>(config_.depth_noise);
-  const float max_depth = static_cast<float>(config_.max_depth);
-  const float depth_scale = static_cast<float>(k.depth_scale);
-  const float focal = static_cast<float>(std::sqrt(k.fx * k.fy));
-
-  std::vector<Candidate*> active;
-  std::vector<synth::TexelLookup> lookups(k.width);
-  for (int v = 0; v < k.height; ++v) {
-    const double yn = (v - k.cy) / k.fy;
-    float row_dir[3];
-    toFloat(R.col(1) * yn + R.col(2), row_dir);
-    active.clear();
-    for (auto& c : candidates) {
-      if (v < c.v0 || v > c.v1) continue;
-      toFloat(c.M.col(1) * yn + c.M.col(2), c.row_dir);
-      active.push_back(&c);
-    }
-    auto* bgr = frame.bgr.ptr<uint8_t>(v);
-    auto* depth = frame.depth.ptr<uint16_t>(v);
-    auto* mask = frame.mask.ptr<uint8_t>(v);
-    const float* noise_row = color_noise || depth_noise ? in_->noise.ptr<float>(v + off[0]) : nullptr;
-    for (int u = 0; u < k.width; ++u) {
-      const float xn = static_cast<float>((u - k.cx) / k.fx);
-      float d[3], inv[3];
-      for (int i = 0; i < 3; ++i) d[i] = row_dir[i] + xn * r_col0[i], inv[i] = 1.0f / d[i];
-      // The room, from inside: the nearest wall plane ahead.
-      float t = std::numeric_limits<float>::infinity();
-      int face = 0;
-      for (int a = 0; a < 3; ++a) {
-        const bool up = d[a] > 0;
-        const float ta = (up ? room_hi_o[a] : room_lo_o[a]) * inv[a];
-        if (ta < t) t = ta, face = 2 * a + (up ? 1 : 0);
-      }
-      const Candidate* hit = nullptr;
-      float hit_dir[3] = {d[0], d[1], d[2]};
-      for (const Candidate* c : active) {
-        if (u < c->u0 || u > c->u1) continue;
-        float dl[3] = {d[0], d[1], d[2]}, invl[3] = {inv[0], inv[1], inv[2]};
-        if (c->own_frame)
-          for (int i = 0; i < 3; ++i) dl[i] = c->row_dir[i] + xn * c->col_dir[i], invl[i] = 1.0f / dl[i];
-        float tc = 0.0f;
-        int fc = 0;
-        if (enterBox(c->lo_o, c->hi_o, invl, t, tc, fc)) {
-          t = tc, face = fc, hit = c;
-          for (int i = 0; i < 3; ++i) hit_dir[i] = dl[i];
-        }
-      }
-      const float* lo_o = hit ? hit->lo_o : room_lo_o;
-      int a = 0, b = 0;
-      synth::faceAxes(face, a, b);
-      // Footprint of the pixel on the surface: t / (f * sqrt(|d . n|)) for the unnormalised direction d.
-      const float footprint = t / (focal * std::sqrt(std::max(std::abs(hit_dir[face / 2]), 1e-4f)));
-      lookups[u] = in_->textures[(hit ? hit->texture : 0) + face].locate(t * hit_dir[a] - lo_o[a],
-                                                                         t * hit_dir[b] - lo_o[b], footprint);
-      synth::prefetch(lookups[u]);
-      float z = t;
-      if (depth_noise) z += depth_sigma * z * z * noise_row[3 * u + off[4]];
-      depth[u] = z > 0 && z <= max_depth ? cv::saturate_cast<uint16_t>(z * depth_scale) : 0;
-      if (hit && hit->dynamic) mask[u] = 255;
-    }
-    // Second pass: colour, once the row's texels are on their way into the cache.
-    for (int u = 0; u < k.width; ++u) {
-      float colour[3];
-      synth::sample(lookups[u], colour);
-      for (int ch = 0; ch < 3; ++ch) {
-        const float n = color_noise ? color_sigma * noise_row[3 * u + ch + off[1 + ch]] : 0.0f;
-        bgr[3 * u + ch] = cv::saturate_cast<uint8_t>(colour[ch] + n);
-      }
-    }
-  }
+    renderer.addBox(objects[i].box, objects[i].T_world_object,
+                    6 * static_cast<int>(1 + static_boxes_.size() + i), true);
+  for (int v = 0; v < k.height; ++v) renderer.renderRow(v, frame);
   return frame;
 }
 

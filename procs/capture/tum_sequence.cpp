@@ -3,40 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <tuple>
+
+#include "bmp/common/tum_text_list.hpp"
 
 namespace bmp::capture {
 
 namespace fs = std::filesystem;
 
 std::vector<ListEntry> readListFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SequenceError(path + ": cannot open list file");
   std::vector<ListEntry> entries;
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!normalizeTumLine(line)) continue;
-    std::istringstream fields(line);
-    ListEntry entry;
-    std::string stamp_text, extra;
-    fields >> stamp_text >> entry.path;
-    std::size_t used = 0;
-    bool numeric = false;
-    try {
-      entry.stamp = std::stod(stamp_text, &used);
-      numeric = used == stamp_text.size() && std::isfinite(entry.stamp);
-    } catch (const std::exception&) {
-      numeric = false;
-    }
-    if (!numeric || entry.path.empty() || (fields >> extra)) {
-      throw SequenceError(path + ":" + std::to_string(line_no) + ": expected 'timestamp filename', got '" +
-                          line + "'");
-    }
-    entries.push_back(std::move(entry));
+  try {
+    for (auto& record : readTumTextList(path, {"list file", "timestamp filename", 1, false}))
+      entries.push_back({record.stamp, std::move(record.fields[0])});
+  } catch (const TumTextError& e) {
+    throw SequenceError(e.what());
   }
   return entries;
 }

@@ -97,4 +97,8 @@ VerifyMode parseVerifyMode(const std::string& text) {
   throw std::invalid_argument("verify mode must be 'header' or 'decode', got '" + text + "'");
 }
 
+const char* toString(VerifyMode mode) {
+  return mode == VerifyMode::kDecode ? "decode" : "header";
+}
+
 }  // namespace bmp::capture

@@ -50,5 +50,6 @@ class TumSource : public FrameSource {
 };
 
 VerifyMode parseVerifyMode(const std::string& text);  // "header" | "decode"; throws std::invalid_argument
+const char* toString(VerifyMode mode);
 
 }  // namespace bmp::capture

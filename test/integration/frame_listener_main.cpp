@@ -70,6 +70,8 @@ int run(ProcessContext& ctx) {
       ctx.lcm.publish("SLAM_POSE", pose);
     }
   });
+  // The first heartbeat goes out here, after the subscription: bmp-capture --wait-for takes a heartbeat to
+  // mean this listener hears frames.
   while (!ctx.stop.requested() && (expect == 0 || received < expect)) {
     ctx.lcm.handle(50);
     ctx.status.tick();

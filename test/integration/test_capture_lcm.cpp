@@ -123,6 +123,7 @@ TEST(CaptureOverLcm, MalformedMessagesOnAckChannelAreSkipped) {
 
 // Lockstep with two answer channels waits for the slower consumer on each frame: a detector-like listener
 // that answers DETECTIONS 30 ms late sets the pace although the tracker-like one answers SLAM_POSE at once.
+// Both listeners have one name: "--wait-for name,name" waits for two of them.
 TEST(CaptureOverLcm, LockstepWaitsForEveryAnswerChannel) {
   const fs::path dir = test::scratchDir("lcm_two_acks");
   const std::string url = test::uniqueLcmUrl(10);
@@ -133,10 +134,10 @@ TEST(CaptureOverLcm, LockstepWaitsForEveryAnswerChannel) {
   ChildProcess slow({binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "slow.txt").string(),
                      "--ack-detections", "--ack-delay-ms", std::to_string(delay_ms)},
                     ChildProcess::Output::kFile, (dir / "slow.log").string());
-  ChildProcess capture(
-      {binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode", "lockstep", "--end",
-       std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS", "--wait-for", "bmp-test-listener"},
-      ChildProcess::Output::kFile, (dir / "capture.log").string());
+  ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
+                        "lockstep", "--end", std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS",
+                        "--wait-for", "bmp-test-listener,bmp-test-listener"},
+                       ChildProcess::Output::kFile, (dir / "capture.log").string());
   ASSERT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   fast.stop(5.0);
@@ -150,6 +151,38 @@ TEST(CaptureOverLcm, LockstepWaitsForEveryAnswerChannel) {
   ASSERT_NE(at, std::string::npos) << log;
   const double seconds = std::stod(log.substr(at + 10));
   EXPECT_GE(seconds, 0.9 * frames * delay_ms / 1000.0) << log;
+}
+
+// Two consumers of one name, the second started well after capture: "--wait-for name,name" holds the first
+// frame until both are heard, so each answers every frame. Waiting by name alone, the first listener's
+// heartbeats released capture while the second was not yet listening (frame 0 then timed out on DETECTIONS).
+TEST(CaptureOverLcm, WaitForTwoConsumersOfOneNameHoldsUntilBothListen) {
+  const fs::path dir = test::scratchDir("lcm_same_name");
+  const std::string url = test::uniqueLcmUrl(12);
+  const int frames = 40;
+  ChildProcess tracker_like(
+      {binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "pose.txt").string(), "--ack"},
+      ChildProcess::Output::kFile, (dir / "pose.log").string());
+  ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
+                        "lockstep", "--end", std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS",
+                        "--wait-for", "bmp-test-listener,bmp-test-listener"},
+                       ChildProcess::Output::kFile, (dir / "capture.log").string());
+  // Several heartbeats of the first listener go by meanwhile; none may count twice.
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ASSERT_TRUE(capture.running()) << test::readText((dir / "capture.log").string());
+  ChildProcess detector_like({binPath("bmp-test-listener"), "--lcm-url", url, "--report",
+                              (dir / "detections.txt").string(), "--ack-detections"},
+                             ChildProcess::Output::kFile, (dir / "detections.log").string());
+  ASSERT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  tracker_like.stop(5.0);
+  detector_like.stop(5.0);
+  const std::string log = test::readText((dir / "capture.log").string());
+  EXPECT_NE(log.find("published " + std::to_string(frames) + " frames"), std::string::npos) << log;
+  EXPECT_EQ(log.find("lockstep timeouts"), std::string::npos) << log;
+  EXPECT_EQ(log.find("no answer on"), std::string::npos) << log;
+  EXPECT_EQ(test::readReport((dir / "pose.txt").string()).size(), static_cast<std::size_t>(frames));
+  EXPECT_EQ(test::readReport((dir / "detections.txt").string()).size(), static_cast<std::size_t>(frames));
 }
 
 // A channel that never answers costs one timeout per frame, and the warning names it.

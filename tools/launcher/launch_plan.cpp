@@ -56,6 +56,7 @@ LaunchPlan makePlan(const RunSettings& settings, const RunRequest& request) {
   if (!request.camera.empty()) cap.argv.insert(cap.argv.end(), {"--camera", request.camera});
   if (!request.speed.empty()) cap.argv.insert(cap.argv.end(), {"--speed", request.speed});
   if (request.frames >= 0) cap.argv.insert(cap.argv.end(), {"--end", std::to_string(request.frames)});
+  // One entry per process started: capture counts distinct processes, so a name listed twice waits for two.
   if (!names.empty()) cap.argv.insert(cap.argv.end(), {"--wait-for", names});
   for (const auto& a : settings.capture_args) cap.argv.push_back(expand(a, request, mode));
   return plan;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <random>
 
 #include <bmp/process_status_t.hpp>
 
@@ -52,6 +53,16 @@ void StopSignal::request() {
   g_stop_signal.store(-1);
 }
 
+namespace {
+int64_t randomInstance() {
+  std::random_device device;
+  std::uniform_int_distribution<uint64_t> any;
+  uint64_t value = 0;
+  while (value == 0) value = any(device);  // 0 is what a sender that never set the field carries
+  return static_cast<int64_t>(value);
+}
+}  // namespace
+
 int64_t nowUtime() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::system_clock::now().time_since_epoch())
@@ -59,7 +70,11 @@ int64_t nowUtime() {
 }
 
 StatusReporter::StatusReporter(LcmNode& lcm, std::string name, std::string channel)
-    : lcm_(lcm), name_(std::move(name)), channel_(std::move(channel)), last_utime_(nowUtime()) {}
+    : lcm_(lcm),
+      name_(std::move(name)),
+      channel_(std::move(channel)),
+      instance_(randomInstance()),
+      last_utime_(nowUtime()) {}
 
 void StatusReporter::publish(int8_t state) {
   const int64_t now = nowUtime();
@@ -68,12 +83,14 @@ void StatusReporter::publish(int8_t state) {
   msg.utime = now;
   msg.name = name_;
   msg.pid = static_cast<int32_t>(getpid());
+  msg.instance = instance_;
   msg.state = state;
   msg.input_rate_hz = static_cast<float>(static_cast<double>(received_ - last_received_) / seconds);
   msg.output_rate_hz = static_cast<float>(static_cast<double>(published_ - last_published_) / seconds);
   msg.received = received_;
   msg.processed = processed_;
   msg.dropped = dropped_;
+  msg.lost = lost_;
   msg.malformed = malformed_ + lcm_.malformedCount();
   msg.message = message_;
   lcm_.publish(channel_, msg);

@@ -155,7 +155,7 @@ void walk(Reader& r, const point_cloud_t*) {
 void walk(Reader& r, const process_status_t*) {
   r.skip(8, "process_status_t.utime");
   r.string("process_status_t.name");
-  r.skip(4 + 1 + 4 + 4 + 4 * 8, "process_status_t counters");
+  r.skip(4 + 8 + 1 + 4 + 4 + 5 * 8, "process_status_t counters");
   r.string("process_status_t.message");
 }
 void walk(Reader& r, const image_t*) {

@@ -8,24 +8,12 @@
 #include <vector>
 
 #include "bmp/common/tum_trajectory.hpp"
-#include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/process.hpp"
+#include "capture/capture_settings.hpp"  // PlayerOptions
 #include "capture/frame_source.hpp"
 #include "capture/pacer.hpp"
 
 namespace bmp::capture {
-
-struct PlayerOptions {
-  std::string channel = channels::kFrames;
-  // Lockstep: the next frame goes out once every one of these channels has answered this one (a slam_pose_t
-  // or detections_t carrying its seq), so the slowest consumer sets the pace and none falls behind.
-  std::vector<std::string> ack_channels{channels::kPose};
-  RateMode mode = RateMode::kRealtime;
-  double speed = 1.0;
-  double lockstep_timeout_s = 5.0;
-  double progress_every_s = 2.0;
-  std::string masks_out;  // folder for dynamic masks (synthetic only); "" = none
-};
 
 struct PlayerSummary {
   int64_t published = 0;

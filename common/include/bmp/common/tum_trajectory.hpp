@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bmp/common/se3.hpp"
+#include "bmp/common/tum_text_list.hpp"  // normalizeTumLine, once declared here
 
 namespace bmp {
 
@@ -19,10 +20,6 @@ class TrajectoryError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-// Normalises one line of a TUM text file (trajectory or image list) as the TUM scripts read them: commas and
-// tabs become spaces, a trailing CR goes. Returns false for a blank line or a '#' comment.
-bool normalizeTumLine(std::string& line);
 
 // Accepts spaces, tabs or commas as separators (as the TUM scripts do). Throws TrajectoryError naming
 // file and line for a malformed line; the result is sorted by time.

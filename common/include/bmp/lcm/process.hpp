@@ -34,6 +34,7 @@ class StatusReporter {
   void received(int64_t n = 1) { received_ += n; }
   void processed(int64_t n = 1) { processed_ += n; }
   void dropped(int64_t n = 1) { dropped_ += n; }
+  void lost(int64_t n = 1) { lost_ += n; }  // inputs that never arrived (sequence gaps)
   void malformed(int64_t n = 1) { malformed_ += n; }
   void published(int64_t n = 1) { published_ += n; }
   void setMessage(const std::string& message) { message_ = message; }
@@ -44,7 +45,10 @@ class StatusReporter {
   int64_t receivedCount() const { return received_; }
   int64_t processedCount() const { return processed_; }
   int64_t droppedCount() const { return dropped_; }
+  int64_t lostCount() const { return lost_; }
   int64_t malformedCount() const { return malformed_; }
+  // Random, non-zero, chosen at construction: what --wait-for counts, as names and pids can repeat.
+  int64_t instance() const { return instance_; }
 
  private:
   void publish(int8_t state);
@@ -52,7 +56,8 @@ class StatusReporter {
   std::string name_;
   std::string channel_;
   std::string message_;
-  int64_t received_ = 0, processed_ = 0, dropped_ = 0, malformed_ = 0, published_ = 0;
+  int64_t instance_;
+  int64_t received_ = 0, processed_ = 0, dropped_ = 0, lost_ = 0, malformed_ = 0, published_ = 0;
   int64_t last_received_ = 0, last_published_ = 0;
   int64_t last_utime_ = 0;
   bool announced_ = false;

@@ -1,0 +1,31 @@
+#pragma once
+// bmp-capture's LCM side: opens the frame source, holds the first frame until the --wait-for processes are
+// heard, plays every frame through the FramePlayer and writes the ground truth of what it played. The
+// process's main only reads the settings and runs it.
+#include <memory>
+
+#include "bmp/lcm/process.hpp"
+#include "capture/capture_settings.hpp"
+#include "capture/frame_source.hpp"
+#include "capture/lcm/frame_player.hpp"
+
+namespace bmp::capture {
+
+class CaptureNode {
+ public:
+  // Opens the source at once: a missing folder, an unknown camera or a bad scene file fails at start-up.
+  CaptureNode(ProcessContext& ctx, CaptureSettings settings);
+
+  // Plays the whole source (or until a stop is requested); returns the process's exit code: 0 when at
+  // least one frame was published, else 1. Throws std::runtime_error when a --wait-for process stays silent.
+  int run();
+
+ private:
+  void writeGroundTruth(const PlayerSummary& summary) const;
+
+  ProcessContext& ctx_;
+  CaptureSettings settings_;
+  std::unique_ptr<FrameSource> source_;
+};
+
+}  // namespace bmp::capture
