@@ -15,6 +15,7 @@
 #include <bmp/process_status_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 
+#include "bmp/common/camera_config.hpp"
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/image_codec.hpp"
 #include "bmp/lcm/conversions.hpp"
@@ -63,7 +64,11 @@ rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
   msg.utime = static_cast<int64_t>(frame.stamp * 1e6 + 0.5);
   msg.depth_utime = msg.utime;
   msg.source = "rgbd_bonn_crowd";
-  msg.depth_scale = 5000.0;
+  // The frame contract asks for the camera; the detector refuses frames without usable intrinsics.
+  static const CameraIntrinsics camera =
+      cameraFromConfig(Config::fromFile(BMP_SOURCE_DIR "/config/cameras/bonn.yaml").section("camera"));
+  msg.camera = toMsg(camera);
+  msg.depth_scale = camera.depth_scale;
   msg.color = test::fileImage(frame.color_path, PixelFormat::kBgr8);
   msg.depth = test::fileImage(frame.depth_path, PixelFormat::kMono16);
   return msg;
@@ -136,7 +141,13 @@ TEST_F(DetectorProcess, EveryModeAnswersEachFrameAndSkipsAnUndecodableOne) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     rgbd_frame_t msg = frameMessage(static_cast<int64_t>(i), frames[i]);
     if (msg.seq == kBadSeq) {
-      msg.color.data.assign(5000, 0x5a);  // a JPEG that is not one
+      // The encoding's signature with garbage behind it: passes the frame checks, fails the decoder.
+      const std::vector<uint8_t> signature =
+          msg.color.encoding == image_t::ENCODING_JPEG
+              ? std::vector<uint8_t>{0xFF, 0xD8, 0xFF}
+              : std::vector<uint8_t>{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+      msg.color.data.assign(5000, 0x5a);
+      std::copy(signature.begin(), signature.end(), msg.color.data.begin());
       msg.color.size = static_cast<int32_t>(msg.color.data.size());
     }
     sent_utime[msg.seq] = msg.utime;

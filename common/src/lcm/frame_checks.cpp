@@ -90,7 +90,8 @@ std::string FrameStream::orderProblem(const Position& last, const Position& next
 
 FrameStream::Verdict FrameStream::refuse(const rgbd_frame_t& msg, const std::string& why) {
   ++refused_;
-  return {false, "frame seq " + std::to_string(msg.seq) + ": " + why, 0};
+  (void)msg;
+  return {false, why, 0};
 }
 
 FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note) {
@@ -141,8 +142,8 @@ FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   if (candidate_run_ < limits_.resync_frames) return refuse(msg, why);
   ++resyncs_;
   seen_seq_ = msg.seq;
-  return take(msg, "frame seq " + std::to_string(msg.seq) + ": stream re-synchronised after " +
-                       std::to_string(limits_.resync_frames) + " frames out of order (" + why + ")");
+  return take(msg, "stream re-synchronised after " + std::to_string(limits_.resync_frames) +
+                       " frames out of order (" + why + ")");
 }
 
 }  // namespace bmp

@@ -1,7 +1,8 @@
 #pragma once
 // bmp-capture's LCM side: opens the frame source, holds the first frame until the --wait-for processes are
-// heard, plays every frame through the FramePlayer and writes the ground truth of what it played. The
-// process's main only reads the settings and runs it.
+// heard, plays every frame through the FramePlayer and writes the ground truth: a dataset's before the first
+// frame, a synthetic scene's pose by pose as it plays, so a capture that dies mid-run still leaves the
+// ground truth of every frame it published. The process's main only reads the settings and runs it.
 #include <memory>
 
 #include "bmp/lcm/process.hpp"
@@ -21,8 +22,6 @@ class CaptureNode {
   int run();
 
  private:
-  void writeGroundTruth(const PlayerSummary& summary) const;
-
   ProcessContext& ctx_;
   CaptureSettings settings_;
   std::unique_ptr<FrameSource> source_;

@@ -10,6 +10,7 @@
 
 #include "bmp/common/log.hpp"
 #include "bmp/common/timing.hpp"
+#include "bmp/lcm/wire_check.hpp"
 #include "capture/lcm/frame_message.hpp"
 
 namespace bmp::capture {
@@ -28,21 +29,40 @@ FramePlayer::FramePlayer(LcmNode& lcm, StopSignal& stop, StatusReporter& status,
 }
 
 void FramePlayer::onAnswer(const void* data, uint32_t size, const ReceivedInfo& info) {
-  // The answer types both carry the frame's seq; the generated decoders check the type's fingerprint.
-  int64_t seq = -1;
+  // Both answer types carry the frame's seq and utime; wire::decode checks fingerprint and lengths.
+  int64_t seq = -1, utime = -1;
   slam_pose_t pose;
   detections_t detections;
-  const auto whole = [size](int status) { return status >= 0 && static_cast<uint32_t>(status) == size; };
-  if (whole(pose.decode(data, 0, static_cast<int>(size)))) {
+  std::string why_pose, why_detections;
+  if (wire::decode(pose, data, size, why_pose)) {
     seq = pose.seq;
-  } else if (whole(detections.decode(data, 0, static_cast<int>(size)))) {
+    utime = pose.utime;
+  } else if (wire::decode(detections, data, size, why_detections)) {
     seq = detections.seq;
+    utime = detections.utime;
   } else {
-    lcm_.reportMalformed(info.channel, size, "bmp.slam_pose_t or bmp.detections_t");
+    lcm_.reportMalformed(info.channel, size,
+                         "bmp.slam_pose_t (" + why_pose + ") or bmp.detections_t (" + why_detections + ")");
+    return;
+  }
+  const auto sent = published_utime_.find(seq);
+  if (sent == published_utime_.end() || sent->second != utime) {
+    ++stray_answers_;
+    status_.malformed();
+    lcm_.reportMalformed(info.channel, size,
+                         "answer to a frame this capture published (seq " + std::to_string(seq) + ", utime " +
+                             std::to_string(utime) + "); ignored");
     return;
   }
   int64_t& last = last_answered_seq_[info.channel];
   last = std::max(last, seq);
+}
+
+void FramePlayer::remember(int64_t seq, int64_t utime) {
+  // Answers come back within the lockstep timeout; a few hundred frames cover any real delay.
+  constexpr std::size_t kRemembered = 512;
+  published_utime_[seq] = utime;
+  while (published_utime_.size() > kRemembered) published_utime_.erase(published_utime_.begin());
 }
 
 bool FramePlayer::waitForAck(int64_t seq) {
@@ -66,7 +86,8 @@ void FramePlayer::writeMask(const CapturedFrame& frame) {
   cv::imwrite((std::filesystem::path(options_.masks_out) / name).string(), frame.dynamic_mask);
 }
 
-PlayerSummary FramePlayer::play(FrameSource& source) {
+PlayerSummary FramePlayer::play(FrameSource& source,
+                                const std::function<void(const StampedPose&)>& on_truth) {
   PlayerSummary summary;
   Pacer pacer(options_.mode, options_.speed);
   const Stopwatch total;
@@ -80,10 +101,15 @@ PlayerSummary FramePlayer::play(FrameSource& source) {
     if (!frame) break;
     pacer.waitUntilDue(frame->stamp);
     if (stop_.requested()) break;
-    if (frame->T_world_cam_true) summary.groundtruth.push_back({frame->stamp, *frame->T_world_cam_true});
+    if (frame->T_world_cam_true) {
+      summary.groundtruth.push_back({frame->stamp, *frame->T_world_cam_true});
+      if (on_truth) on_truth(summary.groundtruth.back());
+    }
     writeMask(*frame);
     const int64_t seq = summary.published;
-    lcm_.publish(options_.channel, toFrameMessage(std::move(*frame), seq, source.camera(), source.name()));
+    const rgbd_frame_t msg = toFrameMessage(std::move(*frame), seq, source.camera(), source.name());
+    remember(seq, msg.utime);
+    lcm_.publish(options_.channel, msg);
     ++summary.published;
     status_.published();
     status_.processed();
@@ -117,6 +143,7 @@ PlayerSummary FramePlayer::play(FrameSource& source) {
       skips.total(), " (missing ", skips.missing_files, ", corrupt ", skips.corrupt_files, ", wrong size ",
       skips.wrong_size, ")",
       summary.lockstep_timeouts ? "; lockstep timeouts " + std::to_string(summary.lockstep_timeouts) : "",
+      stray_answers_ ? "; answers ignored (not for a frame we sent) " + std::to_string(stray_answers_) : "",
       summary.interrupted ? "; interrupted" : "");
   return summary;
 }

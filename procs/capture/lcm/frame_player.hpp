@@ -29,10 +29,12 @@ struct PlayerSummary {
 class FramePlayer {
  public:
   FramePlayer(LcmNode& lcm, StopSignal& stop, StatusReporter& status, PlayerOptions options);
-  PlayerSummary play(FrameSource& source);
+  // on_truth, when set, receives each played frame's true pose as it is published (the source knows it).
+  PlayerSummary play(FrameSource& source, const std::function<void(const StampedPose&)>& on_truth = {});
 
  private:
   bool waitForAck(int64_t seq);
+  void remember(int64_t seq, int64_t utime);
   void onAnswer(const void* data, uint32_t size, const ReceivedInfo& info);
   void writeMask(const CapturedFrame& frame);
 
@@ -41,6 +43,10 @@ class FramePlayer {
   StatusReporter& status_;
   PlayerOptions options_;
   std::map<std::string, int64_t> last_answered_seq_;  // per answer channel
+  // What this capture published lately (seq -> utime): an answer counts only when both match a frame we
+  // sent, so a forged or stray answer (another capture's, seq = INT64_MAX) can never release a frame.
+  std::map<int64_t, int64_t> published_utime_;
+  int64_t stray_answers_ = 0;
 };
 
 }  // namespace bmp::capture

@@ -36,18 +36,23 @@ DetectorNode::DetectorNode(ProcessContext& ctx, const DetectorSettings& settings
 
 void DetectorNode::receive(const rgbd_frame_t& msg) {
   ctx_.status.received();
+  const auto refuse = [&](const std::string& why) {
+    FrameResult failed;
+    failed.seq = msg.seq;
+    failed.utime = msg.utime;
+    failed.error = why;
+    skip(failed);
+  };
+  const FrameStream::Verdict verdict = stream_.accept(msg);
+  ctx_.status.lost(verdict.lost_before);
+  if (!verdict.ok) return refuse(verdict.reason);
   FrameJob job;
   job.seq = msg.seq;
   job.utime = msg.utime;
   try {
     job.color = fromMsg(msg.color);
   } catch (const ImageError& e) {
-    FrameResult failed;
-    failed.seq = msg.seq;
-    failed.utime = msg.utime;
-    failed.error = std::string("colour image: ") + e.what();
-    skip(failed);
-    return;
+    return refuse(std::string("colour image: ") + e.what());
   }
   // Waits here in 'every' mode while the queue is full; counts the frame it displaced in 'latest' mode.
   ctx_.status.dropped(static_cast<int64_t>(worker_.submit(std::move(job))));

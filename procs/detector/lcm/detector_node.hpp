@@ -5,6 +5,7 @@
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/timing.hpp"
+#include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/process.hpp"
 #include "detector/detection_worker.hpp"
 #include "detector/detector.hpp"
@@ -38,6 +39,7 @@ class DetectorNode {
   std::string model_name_;
   Wakeup wakeup_;
   TimingStats frame_times_;
+  FrameStream stream_;      // refuses unusable or out-of-order frames, counts those lost upstream
   DetectionWorker worker_;  // last: its thread stops first, before what it uses goes
 };
 

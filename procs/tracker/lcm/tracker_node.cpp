@@ -82,14 +82,14 @@ void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
 
 void TrackerNode::process(const rgbd_frame_t& msg) {
   const FrameStream::Verdict verdict = stream_.accept(msg);
-  if (!verdict.reason.empty() && verdict.ok) log::warn(verdict.reason);
+  if (!verdict.reason.empty() && verdict.ok) log::warn("frame seq ", msg.seq, ": ", verdict.reason);
   ctx_.status.lost(verdict.lost_before);
   if (verdict.lost_before > 0) {
     // The constant-velocity prediction spans one frame; after a gap it would point the wrong way.
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
     if (tracker_) tracker_->forgetMotion();
   }
-  if (!verdict.ok) return skip(msg, verdict.reason);
+  if (!verdict.ok) return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason);
   cv::Mat color, depth;
   try {
     color = decodeImage(fromMsg(msg.color));

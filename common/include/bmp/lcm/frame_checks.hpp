@@ -35,7 +35,7 @@ class FrameStream {
  public:
   struct Verdict {
     bool ok = true;
-    std::string reason;       // why refused (naming seq and the rule), or why the stream re-synchronised
+    std::string reason;       // why refused (the rule), or why the stream re-synchronised; no seq
     int64_t lost_before = 0;  // frames missing between the last accepted one and this one
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits) {}
