@@ -5,28 +5,17 @@
 #include <limits>
 
 #include "bmp/lcm/conversions.hpp"
+#include "keyframe_message_util.hpp"
 #include "mapper/lcm/mapper_messages.hpp"
 #include "mapper_test_util.hpp"
 
 namespace bmp::mapper {
 namespace {
 
-keyframe_t message(const KeyframeInput& kf) {
-  keyframe_t m;
-  m.utime = 1000000;
-  m.id = kf.id;
-  m.seq = kf.id;
-  m.T_world_cam = toMsg(kf.T_world_cam);
-  m.camera = toMsg(kf.camera);
-  m.depth_scale = kf.camera.depth_scale;
-  m.color = toMsg(encodeImage(kf.color, ImageEncoding::kJpeg));
-  m.depth = toMsg(encodeImage(kf.depth, ImageEncoding::kPng));
-  m.dynamic_mask = toMsg(encodeImage(kf.dynamic_mask, ImageEncoding::kPng));
-  return m;
-}
+using test::keyframeMessage;
 
 keyframe_t good() {
-  return message(test::wallKeyframe(5, test::translation(0.1, 0.2, 0.3), 2.0));
+  return keyframeMessage(test::wallKeyframe(5, test::translation(0.1, 0.2, 0.3), 2.0));
 }
 
 std::string reasonOf(const keyframe_t& m) {

@@ -34,8 +34,10 @@ void MapperNode::run() {
       last_save_s_ = now;
       save("periodic");
     }
-    if (now - last_status_s_ >= 1.0) {  // reads /proc: once per heartbeat is enough
+    // Reads /proc: after each message, or once per heartbeat, is enough.
+    if (status_dirty_ || now - last_status_s_ >= 1.0) {
       last_status_s_ = now;
+      status_dirty_ = false;
       ctx_.status.setMessage(statusLine());
     }
     ctx_.status.tick();
@@ -52,6 +54,7 @@ void MapperNode::refuse(const std::string& what) {
 
 void MapperNode::onKeyframe(const keyframe_t& msg) {
   ctx_.status.received();
+  status_dirty_ = true;
   KeyframeInput kf;
   std::string why = keyframeFromMessage(msg, kf);
   IntegrateResult r;
@@ -66,6 +69,7 @@ void MapperNode::onKeyframe(const keyframe_t& msg) {
 
 void MapperNode::onPoses(const keyframe_poses_t& msg) {
   ctx_.status.received();
+  status_dirty_ = true;
   std::vector<std::string> rejected;
   const PoseUpdateResult r = mapper_.updatePoses(poseUpdatesFromMessage(msg, rejected));
   rejected.insert(rejected.end(), r.rejected.begin(), r.rejected.end());

@@ -39,7 +39,7 @@ class MapperNode {
   SaveSignal save_signal_;
   Stopwatch clock_;
   double last_grid_s_ = -1e300, last_cloud_s_ = -1e300, last_save_s_ = 0, last_status_s_ = -1e300;
-  bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false;
+  bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
   std::string last_warning_;
 };
 
