@@ -30,7 +30,7 @@ ColoredPoint transformed(const SE3& T, const ColoredPoint& p) {
 
 }  // namespace
 
-Mapper::Mapper(MapperSettings settings) : settings_(std::move(settings)), octree_(settings_.octomap) {}
+Mapper::Mapper(const MapperSettings& settings) : settings_(settings), octree_(settings_.octomap) {}
 Mapper::~Mapper() = default;
 
 IntegrateResult Mapper::integrate(const KeyframeInput& kf) {

@@ -39,7 +39,7 @@ struct PoseUpdateResult {
 
 class Mapper {
  public:
-  explicit Mapper(MapperSettings settings);
+  explicit Mapper(const MapperSettings& settings);
   ~Mapper();
   Mapper(const Mapper&) = delete;
   Mapper& operator=(const Mapper&) = delete;

@@ -73,11 +73,12 @@ MapperSettings syntheticSettings() {
 
 class SyntheticMap : public ::testing::Test {
  protected:
+  // Each test case runs in a process of its own under ctest: rendering and mapping happen once per case,
+  // so the cases are few and each checks much.
   static void SetUpTestSuite() {
     scene_ = std::make_unique<capture::SyntheticScene>(capture::SyntheticSceneConfig{});
     for (int f = 0; f < scene_->numFrames(); f += kEvery) frames_.push_back(scene_->render(f));
     masked_ = run(true);
-    unmasked_ = run(false);
   }
   static void TearDownTestSuite() {
     masked_.reset();
@@ -111,6 +112,10 @@ class SyntheticMap : public ::testing::Test {
     return static_cast<double>(inside) / static_cast<double>(cloud.size());
   }
   static int lastFrame() { return frames_.back().index; }
+  void checkWallsFloorAndFurnitureAreMappedAndOccupied();
+  void checkSpaceTheCameraSawIsFree();
+  void checkNoVoxelOnAMoversPathIsOccupied();
+  void checkFurnitureIsOccupiedInTheGrid();
 
   static std::unique_ptr<capture::SyntheticScene> scene_;
   static std::vector<capture::SyntheticFrame> frames_;
@@ -123,6 +128,7 @@ std::unique_ptr<Mapper> SyntheticMap::masked_;
 std::unique_ptr<Mapper> SyntheticMap::unmasked_;
 
 TEST_F(SyntheticMap, MasksKeepTheMoversOutOfTheCloud) {
+  unmasked_ = run(false);
   const SweptVolume swept(*scene_, lastFrame(), 0.03);
   const double on = sweptShare(*masked_, swept), off = sweptShare(*unmasked_, swept);
   std::printf("share of map points in the movers' swept volume: masks on %.3f %%, off %.3f %%\n", 100 * on,
@@ -153,7 +159,7 @@ double occupiedShare(const Mapper& mapper, const std::vector<Eigen::Vector3d>& p
   return points.empty() ? 0.0 : static_cast<double>(occupied) / static_cast<double>(points.size());
 }
 
-TEST_F(SyntheticMap, WallsFloorAndFurnitureAreMappedAndOccupied) {
+void SyntheticMap::checkWallsFloorAndFurnitureAreMappedAndOccupied() {
   const PointList& cloud = masked_->cloud();
   const capture::AlignedBox& room = scene_->room();
   const auto floor = onSurface(cloud, room, 2, false);
@@ -179,7 +185,7 @@ TEST_F(SyntheticMap, WallsFloorAndFurnitureAreMappedAndOccupied) {
   EXPECT_GT(floor_share, 0.75);  // rays graze the floor and carve part of its voxels: OctoMap's known limit
 }
 
-TEST_F(SyntheticMap, SpaceTheCameraSawIsFree) {
+void SyntheticMap::checkSpaceTheCameraSawIsFree() {
   const SweptVolume swept(*scene_, lastFrame(), 0.15);
   std::size_t free = 0, checked = 0;
   for (const auto& f : frames_) {
@@ -200,7 +206,7 @@ TEST_F(SyntheticMap, SpaceTheCameraSawIsFree) {
   EXPECT_GT(static_cast<double>(free) / static_cast<double>(checked), 0.97);
 }
 
-TEST_F(SyntheticMap, NoVoxelOnAMoversPathIsOccupied) {
+void SyntheticMap::checkNoVoxelOnAMoversPathIsOccupied() {
   const SweptVolume swept(*scene_, lastFrame(), -0.05);  // the paths themselves, 5 cm inside the boxes
   std::size_t occupied = 0, checked = 0, grid_occupied = 0;
   const OccupancyGrid2D grid = masked_->grid();
@@ -220,7 +226,7 @@ TEST_F(SyntheticMap, NoVoxelOnAMoversPathIsOccupied) {
   EXPECT_EQ(grid_occupied, 0u);
 }
 
-TEST_F(SyntheticMap, FurnitureIsOccupiedInTheGrid) {
+void SyntheticMap::checkFurnitureIsOccupiedInTheGrid() {
   const OccupancyGrid2D grid = masked_->grid();
   std::size_t known = 0, occupied = 0;
   for (const auto& box : scene_->staticBoxes()) {
@@ -238,6 +244,25 @@ TEST_F(SyntheticMap, FurnitureIsOccupiedInTheGrid) {
   std::printf("grid cells over furniture: %zu known, %zu occupied\n", known, occupied);
   ASSERT_GT(known, 100u);
   EXPECT_GT(static_cast<double>(occupied) / static_cast<double>(known), 0.9);
+}
+
+TEST_F(SyntheticMap, MaskedMapHoldsTheStaticSceneAndNothingOfTheMovers) {
+  {
+    SCOPED_TRACE("walls, floor and furniture in the cloud and occupied");
+    checkWallsFloorAndFurnitureAreMappedAndOccupied();
+  }
+  {
+    SCOPED_TRACE("space the camera saw is free");
+    checkSpaceTheCameraSawIsFree();
+  }
+  {
+    SCOPED_TRACE("no voxel on a mover's path is occupied");
+    checkNoVoxelOnAMoversPathIsOccupied();
+  }
+  {
+    SCOPED_TRACE("furniture is occupied in the grid");
+    checkFurnitureIsOccupiedInTheGrid();
+  }
 }
 
 }  // namespace

@@ -10,9 +10,9 @@
 
 namespace bmp::mapper {
 
-MapperNode::MapperNode(ProcessContext& ctx, MapperSettings settings, MapperProcessSettings process,
+MapperNode::MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
                        std::string out_dir)
-    : ctx_(ctx), process_(std::move(process)), out_dir_(std::move(out_dir)), mapper_(std::move(settings)) {
+    : ctx_(ctx), process_(std::move(process)), out_dir_(std::move(out_dir)), mapper_(settings) {
   ctx_.lcm.subscribe<keyframe_t>(process_.keyframe_channel,
                                  [this](const keyframe_t& m, const ReceivedInfo&) { onKeyframe(m); });
   ctx_.lcm.subscribe<keyframe_poses_t>(

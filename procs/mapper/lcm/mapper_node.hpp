@@ -17,7 +17,7 @@ namespace bmp::mapper {
 class MapperNode {
  public:
   // Subscribes at once. SIGUSR1 is blocked from here on and read in run().
-  MapperNode(ProcessContext& ctx, MapperSettings settings, MapperProcessSettings process,
+  MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
              std::string out_dir);
 
   // Until a stop is requested.
