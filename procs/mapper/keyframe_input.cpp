@@ -1,0 +1,52 @@
+#include "mapper/keyframe_input.hpp"
+
+#include <cmath>
+
+namespace bmp::mapper {
+
+namespace {
+
+// The largest image side we accept (as for RGBD_FRAME): larger is a publisher's mistake.
+constexpr int kMaxSide = 8192;
+
+std::string checkCamera(const CameraIntrinsics& k) {
+  const bool finite = std::isfinite(k.fx) && std::isfinite(k.fy) && std::isfinite(k.cx) &&
+                      std::isfinite(k.cy) && std::isfinite(k.depth_scale);
+  if (!finite) return "non-finite intrinsics";
+  for (double d : k.distortion)
+    if (!std::isfinite(d)) return "non-finite distortion";
+  if (k.width <= 0 || k.height <= 0 || k.width > kMaxSide || k.height > kMaxSide)
+    return "camera size " + std::to_string(k.width) + "x" + std::to_string(k.height) + " out of range";
+  if (k.fx <= 0 || k.fy <= 0) return "focal lengths must be positive";
+  if (k.depth_scale <= 0) return "depth_scale must be positive";
+  return "";
+}
+
+std::string checkImage(const cv::Mat& m, int type, const CameraIntrinsics& k, const char* what) {
+  if (m.type() != type) return std::string(what) + " has the wrong pixel type";
+  if (m.cols != k.width || m.rows != k.height)
+    return std::string(what) + " is " + std::to_string(m.cols) + "x" + std::to_string(m.rows) +
+           ", camera is " + std::to_string(k.width) + "x" + std::to_string(k.height);
+  return "";
+}
+
+}  // namespace
+
+std::string checkPose(const SE3& T) {
+  if (!T.matrix().allFinite()) return "non-finite pose";
+  const Eigen::Matrix3d R = T.linear();
+  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 || R.determinant() < 0)
+    return "pose rotation is not a rotation";
+  return "";
+}
+
+std::string checkKeyframe(const KeyframeInput& kf) {
+  std::string why = checkCamera(kf.camera);
+  if (why.empty()) why = checkPose(kf.T_world_cam);
+  if (why.empty()) why = checkImage(kf.depth, CV_16UC1, kf.camera, "depth");
+  if (why.empty()) why = checkImage(kf.color, CV_8UC3, kf.camera, "colour");
+  if (why.empty() && !kf.dynamic_mask.empty()) why = checkImage(kf.dynamic_mask, CV_8UC1, kf.camera, "mask");
+  return why;
+}
+
+}  // namespace bmp::mapper

@@ -1,0 +1,123 @@
+#include "mapper/lcm/mapper_node.hpp"
+
+#include <cstdio>
+
+#include "bmp/common/atomic_file.hpp"
+#include "bmp/common/log.hpp"
+#include "mapper/lcm/mapper_messages.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper/memory_usage.hpp"
+
+namespace bmp::mapper {
+
+MapperNode::MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
+                       std::string out_dir)
+    : ctx_(ctx), process_(std::move(process)), out_dir_(std::move(out_dir)), mapper_(settings) {
+  ctx_.lcm.subscribe<keyframe_t>(process_.keyframe_channel,
+                                 [this](const keyframe_t& m, const ReceivedInfo&) { onKeyframe(m); });
+  ctx_.lcm.subscribe<keyframe_poses_t>(
+      process_.keyframe_poses_channel,
+      [this](const keyframe_poses_t& m, const ReceivedInfo&) { onPoses(m); });
+}
+
+void MapperNode::run() {
+  while (!ctx_.stop.requested()) {
+    ctx_.lcm.handle(100);
+    const double now = clock_.elapsedMs() * 1e-3;
+    if (mapper_.maintain(now)) {
+      log::info("octree rebuilt from ", mapper_.keyframeCount(), " keyframes after a pose update");
+      grid_dirty_ = true;
+    }
+    publishDue(now);
+    if (save_signal_.pending()) save("SIGUSR1");
+    if (save_dirty_ && process_.save_period_s > 0 && now - last_save_s_ >= process_.save_period_s) {
+      last_save_s_ = now;
+      save("periodic");
+    }
+    // Reads /proc: after each message, or once per heartbeat, is enough.
+    if (status_dirty_ || now - last_status_s_ >= 1.0) {
+      last_status_s_ = now;
+      status_dirty_ = false;
+      ctx_.status.setMessage(statusLine());
+    }
+    ctx_.status.tick();
+  }
+  log::info("mapped ", mapper_.keyframeCount(), " keyframes; integration ",
+            mapper_.integrationTimes().summary());
+}
+
+void MapperNode::refuse(const std::string& what) {
+  ctx_.status.malformed();
+  last_warning_ = what;
+  log::warn(what);
+}
+
+void MapperNode::onKeyframe(const keyframe_t& msg) {
+  ctx_.status.received();
+  status_dirty_ = true;
+  KeyframeInput kf;
+  std::string why = keyframeFromMessage(msg, kf);
+  IntegrateResult r;
+  if (why.empty()) {
+    r = mapper_.integrate(kf);
+    why = r.reason;
+  }
+  if (!why.empty()) return refuse("keyframe " + std::to_string(msg.id) + ": " + why + "; skipped");
+  ctx_.status.processed();
+  grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
+}
+
+void MapperNode::onPoses(const keyframe_poses_t& msg) {
+  ctx_.status.received();
+  status_dirty_ = true;
+  std::vector<std::string> rejected;
+  const PoseUpdateResult r = mapper_.updatePoses(poseUpdatesFromMessage(msg, rejected));
+  rejected.insert(rejected.end(), r.rejected.begin(), r.rejected.end());
+  for (const auto& line : rejected) refuse("pose update for " + line + "; skipped");
+  if (r.applied > 0) {
+    ctx_.status.processed();
+    cloud_dirty_ = save_dirty_ = true;
+  }
+}
+
+void MapperNode::publishDue(double now) {
+  const int64_t utime = nowUtime();
+  if (grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) {
+    last_grid_s_ = now;
+    grid_dirty_ = false;
+    ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_.grid(), utime));
+    ctx_.lcm.publish(process_.octomap_channel, toOctomapMessage(mapper_.occupancy(), utime));
+    ctx_.status.published(2);
+  }
+  if (cloud_dirty_ && now - last_cloud_s_ >= process_.cloud_period_s) {
+    last_cloud_s_ = now;
+    cloud_dirty_ = false;
+    const auto max_points = static_cast<std::size_t>(process_.max_cloud_points);
+    ctx_.lcm.publish(process_.cloud_channel, toCloudMessage(mapper_.viewerCloud(), utime, max_points));
+    ctx_.status.published();
+  }
+}
+
+void MapperNode::save(const std::string& why) {
+  try {
+    Stopwatch watch;
+    const auto written = writeMapFiles(out_dir_, mapper_);
+    save_dirty_ = false;
+    log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ", mapper_.cloud().size(),
+              " points, ", static_cast<int>(watch.elapsedMs()), " ms");
+  } catch (const FileWriteError& e) {
+    log::error("map not saved (", why, "): ", e.what());
+  }
+}
+
+std::string MapperNode::statusLine() const {
+  const TimingStats& t = mapper_.integrationTimes();
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "keyframes %zu, points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
+                mapper_.keyframeCount(), mapper_.pointCount(), mapper_.occupancy().nodeCount(),
+                static_cast<double>(residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
+  return last_warning_.empty() ? line : std::string(line) + "; last warning: " + last_warning_;
+}
+
+}  // namespace bmp::mapper

@@ -1,0 +1,46 @@
+#pragma once
+// bmp-mapper's LCM side: keyframes and pose updates in, the library's Mapper called on each, the grid, the
+// octree and a viewer cloud out at their rates, map files on SIGUSR1, at an interval and at exit.
+#include <string>
+
+#include <bmp/keyframe_poses_t.hpp>
+#include <bmp/keyframe_t.hpp>
+
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/process.hpp"
+#include "mapper/lcm/process_settings.hpp"
+#include "mapper/lcm/save_signal.hpp"
+#include "mapper/mapper.hpp"
+
+namespace bmp::mapper {
+
+class MapperNode {
+ public:
+  // Subscribes at once. SIGUSR1 is blocked from here on and read in run().
+  MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
+             std::string out_dir);
+
+  // Until a stop is requested.
+  void run();
+  // Writes every map file into the output folder; a failure is logged, never fatal (the map lives on).
+  void save(const std::string& why);
+
+ private:
+  void onKeyframe(const keyframe_t& msg);
+  void onPoses(const keyframe_poses_t& msg);
+  void publishDue(double now_s);
+  void refuse(const std::string& what);
+  std::string statusLine() const;
+
+  ProcessContext& ctx_;
+  MapperProcessSettings process_;
+  std::string out_dir_;
+  Mapper mapper_;
+  SaveSignal save_signal_;
+  Stopwatch clock_;
+  double last_grid_s_ = -1e300, last_cloud_s_ = -1e300, last_save_s_ = 0, last_status_s_ = -1e300;
+  bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
+  std::string last_warning_;
+};
+
+}  // namespace bmp::mapper

@@ -1,0 +1,25 @@
+#pragma once
+// bmp-mapper's process side (the `process` section of config/mapper.yaml): channels, publishing and saving
+// rates. Read and checked here, once.
+#include <string>
+
+#include "bmp/common/config.hpp"
+#include "bmp/lcm/channels.hpp"
+
+namespace bmp::mapper {
+
+struct MapperProcessSettings {
+  std::string keyframe_channel = channels::kKeyframe;
+  std::string keyframe_poses_channel = channels::kKeyframePoses;
+  std::string octomap_channel = channels::kOctomap;
+  std::string grid_channel = channels::kOccupancyGrid;
+  std::string cloud_channel = channels::kMapCloud;
+  double grid_period_s = 1.0;     // OCCUPANCY_GRID and OCTOMAP, when the map changed
+  double cloud_period_s = 2.0;    // MAP_CLOUD, when the map changed
+  double save_period_s = 60.0;    // map files; 0: only on exit and SIGUSR1
+  int max_cloud_points = 200000;  // MAP_CLOUD is thinned to this many points (LCM messages stay < 4 MiB)
+};
+
+MapperProcessSettings processSettingsFromConfig(const Config& section);
+
+}  // namespace bmp::mapper

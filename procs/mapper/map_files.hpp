@@ -1,0 +1,16 @@
+#pragma once
+// Everything the mapper leaves on disk, each file replaced atomically (a temporary beside it, then renamed),
+// so a reader or a crash never sees half a map.
+#include <string>
+#include <vector>
+
+#include "mapper/mapper.hpp"
+
+namespace bmp::mapper {
+
+// map.pcd, map.ply, map.bt, occupancy.pgm, occupancy.yaml, cloud_top.png, cloud_oblique.png, occupancy.png.
+// Creates dir if needed; brings the mapper up to date first (flush). Returns the paths written. Throws
+// FileWriteError (bmp/common/atomic_file.hpp) naming the file that could not be written.
+std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper);
+
+}  // namespace bmp::mapper

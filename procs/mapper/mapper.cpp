@@ -1,0 +1,140 @@
+#include "mapper/mapper.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mapper/keyframe_cloud.hpp"
+#include "mapper/voxel_filter.hpp"
+
+namespace bmp::mapper {
+
+namespace {
+
+// Appended points wait unfiltered until they outnumber this share of the filtered ones (or someone asks for
+// the cloud): re-filtering the whole map for every keyframe would cost O(map) per keyframe.
+constexpr double kRefilterShare = 0.5;
+constexpr std::size_t kRefilterMinimum = 200000;
+
+std::vector<Eigen::Vector3f> positions(const PointList& points) {
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(points.size());
+  for (const auto& p : points) out.push_back(p.position());
+  return out;
+}
+
+ColoredPoint transformed(const SE3& T, const ColoredPoint& p) {
+  const Eigen::Vector3d q = T * Eigen::Vector3d(p.x, p.y, p.z);
+  return ColoredPoint{
+      static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), p.r, p.g, p.b};
+}
+
+}  // namespace
+
+Mapper::Mapper(const MapperSettings& settings) : settings_(settings), octree_(settings_.octomap) {}
+Mapper::~Mapper() = default;
+
+IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
+  Stopwatch watch;
+  IntegrateResult result;
+  result.reason = checkKeyframe(kf);
+  if (result.reason.empty() && hasKeyframe(kf.id))
+    result.reason = "a keyframe with this id was already mapped";
+  if (!result.reason.empty()) return result;
+
+  if (!rays_.fits(kf.camera)) rays_ = RayTable(kf.camera);
+  Stored stored;
+  stored.T_world_cam = kf.T_world_cam;
+  stored.local = voxelFilter(backProject(kf, rays_, settings_.cloud), settings_.cloud.keyframe_voxel_m);
+  // Down-sampled to the octree's leaves before ray casting, so integration keeps up.
+  stored.octree_local = positions(voxelFilter(stored.local, settings_.octomap.resolution_m));
+  appendToCloud(stored);
+  insertIntoOctree(stored);
+  result.points = stored.local.size();
+  keyframes_.emplace(kf.id, std::move(stored));
+  result.ok = true;
+  result.milliseconds = watch.elapsedMs();
+  integration_ms_.add(result.milliseconds);
+  return result;
+}
+
+PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
+  PoseUpdateResult result;
+  for (const auto& u : updates) {
+    const auto it = keyframes_.find(u.id);
+    std::string why = it == keyframes_.end() ? "unknown keyframe" : checkPose(u.T_world_cam);
+    if (!why.empty()) {
+      result.rejected.push_back("keyframe " + std::to_string(u.id) + ": " + why);
+      continue;
+    }
+    it->second.T_world_cam = u.T_world_cam;
+    cloud_stale_ = true;
+    octree_stale_ = octree_stale_ || movedBeyondThresholds(it->second);
+    ++result.applied;
+  }
+  return result;
+}
+
+bool Mapper::movedBeyondThresholds(const Stored& kf) const {
+  const SE3 delta = kf.T_world_cam_in_octree.inverse() * kf.T_world_cam;
+  return delta.translation().norm() > settings_.rebuild.min_translation_m ||
+         rotationAngle(delta) * 180.0 / M_PI > settings_.rebuild.min_rotation_deg;
+}
+
+bool Mapper::maintain(double now_s) {
+  if (!octree_stale_ || now_s - last_rebuild_s_ < settings_.rebuild.min_interval_s) return false;
+  last_rebuild_s_ = now_s;
+  rebuildOctree();
+  return true;
+}
+
+void Mapper::flush() {
+  if (octree_stale_) rebuildOctree();
+  cloud();
+}
+
+void Mapper::rebuildOctree() {
+  octree_.clear();
+  for (auto& entry : keyframes_) insertIntoOctree(entry.second);
+  octree_stale_ = false;
+  ++rebuilds_;
+}
+
+void Mapper::insertIntoOctree(Stored& kf) {
+  std::vector<Eigen::Vector3f> world;
+  world.reserve(kf.octree_local.size());
+  const Eigen::Isometry3f T = kf.T_world_cam.cast<float>();
+  for (const auto& p : kf.octree_local) world.push_back(T * p);
+  octree_.insertScan(world, kf.T_world_cam.translation());
+  kf.T_world_cam_in_octree = kf.T_world_cam;
+}
+
+void Mapper::appendToCloud(const Stored& kf) {
+  for (const auto& p : kf.local) world_cloud_.push_back(transformed(kf.T_world_cam, p));
+  const std::size_t waiting = world_cloud_.size() - filtered_size_;
+  if (waiting > std::max(kRefilterMinimum, static_cast<std::size_t>(kRefilterShare * filtered_size_))) {
+    world_cloud_ = voxelFilter(world_cloud_, settings_.cloud.map_voxel_m);
+    filtered_size_ = world_cloud_.size();
+  }
+}
+
+const PointList& Mapper::cloud() {
+  if (cloud_stale_) {
+    world_cloud_.clear();
+    for (const auto& entry : keyframes_)
+      for (const auto& p : entry.second.local)
+        world_cloud_.push_back(transformed(entry.second.T_world_cam, p));
+    filtered_size_ = 0;
+    cloud_stale_ = false;
+  }
+  if (filtered_size_ != world_cloud_.size()) {
+    world_cloud_ = voxelFilter(world_cloud_, settings_.cloud.map_voxel_m);
+    filtered_size_ = world_cloud_.size();
+  }
+  return world_cloud_;
+}
+
+PointList Mapper::viewerCloud() {
+  return voxelFilter(cloud(), settings_.cloud.viewer_voxel_m);
+}
+
+}  // namespace bmp::mapper

@@ -1,0 +1,101 @@
+#pragma once
+// bmp::mapper::Mapper, the one entry point of the dense static map: keyframes in (integrate), pose updates
+// after bundle adjustment in (updatePoses), and out the stitched coloured cloud, the OctoMap and the 2-D
+// grid. Read integrate() first: back-project the static pixels, voxel-filter, place in the world, stitch,
+// insert into the octree by ray casting.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bmp/common/se3.hpp"
+#include "bmp/common/timing.hpp"
+#include "mapper/keyframe_input.hpp"
+#include "mapper/mapper_settings.hpp"
+#include "mapper/occupancy_grid.hpp"
+#include "mapper/occupancy_map.hpp"
+#include "mapper/point_types.hpp"
+#include "mapper/ray_table.hpp"
+
+namespace bmp::mapper {
+
+struct IntegrateResult {
+  bool ok = false;
+  std::string reason;       // why the keyframe was refused ("" when ok)
+  std::size_t points = 0;   // in its filtered local cloud
+  double milliseconds = 0;  // integration time
+};
+
+struct PoseUpdate {
+  int64_t id = 0;
+  SE3 T_world_cam = SE3::Identity();
+};
+
+struct PoseUpdateResult {
+  int applied = 0;
+  std::vector<std::string> rejected;  // one line per refused update, naming the keyframe id and the reason
+};
+
+class Mapper {
+ public:
+  explicit Mapper(const MapperSettings& settings);
+  ~Mapper();
+  Mapper(const Mapper&) = delete;
+  Mapper& operator=(const Mapper&) = delete;
+
+  // Maps one keyframe, or refuses it (reason in the result; nothing else changes): a keyframe that fails
+  // checkKeyframe, or whose id was seen before.
+  IntegrateResult integrate(const KeyframeInput& kf);
+  // New poses of known keyframes: the cloud follows at once (on the next cloud()), the octree at the next
+  // maintain() that is due. Updates for unknown ids or with invalid poses are refused one by one.
+  PoseUpdateResult updatePoses(const std::vector<PoseUpdate>& updates);
+  // Rebuilds the octree from the stored keyframe clouds when some keyframe moved beyond the rebuild
+  // thresholds since it was inserted, and the last rebuild is min_interval_s old. now_s: a monotonic clock
+  // in seconds. Returns true when it rebuilt.
+  bool maintain(double now_s);
+  // Everything up to date whatever the interval (before files are written at exit).
+  void flush();
+
+  // The stitched cloud, world frame, voxel-filtered at map_voxel_m.
+  const PointList& cloud();
+  // The cloud down-sampled to viewer_voxel_m.
+  PointList viewerCloud();
+  OccupancyGrid2D grid() const { return octree_.project(settings_.grid); }
+  const OccupancyMap& occupancy() const { return octree_; }
+
+  // Points in the stitched cloud, some perhaps still waiting for the voxel filter (for status lines).
+  std::size_t pointCount() const { return world_cloud_.size(); }
+  std::size_t keyframeCount() const { return keyframes_.size(); }
+  bool hasKeyframe(int64_t id) const { return keyframes_.count(id) != 0; }
+  const MapperSettings& settings() const { return settings_; }
+  const TimingStats& integrationTimes() const { return integration_ms_; }
+  int rebuildCount() const { return rebuilds_; }
+  bool octreeStale() const { return octree_stale_; }
+
+ private:
+  struct Stored {
+    SE3 T_world_cam = SE3::Identity();            // the newest pose
+    SE3 T_world_cam_in_octree = SE3::Identity();  // the pose its rays were cast from
+    PointList local;                              // camera frame, keyframe_voxel_m
+    std::vector<Eigen::Vector3f> octree_local;    // camera frame, down-sampled to the octree's resolution
+  };
+  void appendToCloud(const Stored& kf);
+  void insertIntoOctree(Stored& kf);
+  void rebuildOctree();
+  bool movedBeyondThresholds(const Stored& kf) const;
+
+  MapperSettings settings_;
+  RayTable rays_;
+  std::map<int64_t, Stored> keyframes_;  // by id: rebuilds replay them in creation order
+  PointList world_cloud_;
+  std::size_t filtered_size_ = 0;  // world_cloud_'s first part that is already voxel-filtered
+  bool cloud_stale_ = false;       // a pose changed: rebuild the cloud from the local clouds
+  OccupancyMap octree_;
+  bool octree_stale_ = false;
+  double last_rebuild_s_ = -1e300;
+  int rebuilds_ = 0;
+  TimingStats integration_ms_;
+};
+
+}  // namespace bmp::mapper

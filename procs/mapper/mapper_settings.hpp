@@ -1,0 +1,64 @@
+#pragma once
+// Every tunable of the mapper library, with its default. config/mapper.yaml names each once; the process
+// fills this struct from it (mapper_config.hpp) and the library never opens a file.
+#include <array>
+
+namespace bmp::mapper {
+
+// Which pixels of a keyframe become map points.
+struct CloudSettings {
+  double min_depth_m = 0.3;        // nearer depth is dropped (sensor noise, the robot itself)
+  double max_depth_m = 5.0;        // farther depth is dropped (noise grows with depth squared)
+  int mask_dilation_px = 5;        // dynamic mask grown by this many pixels: mask edges miss the mover's rim
+  int pixel_step = 1;              // back-project every Nth pixel in each direction
+  double keyframe_voxel_m = 0.02;  // voxel filter of one keyframe's cloud (camera frame)
+  double map_voxel_m = 0.02;       // voxel filter of the stitched global cloud
+  double viewer_voxel_m = 0.05;    // the down-sampled cloud published for viewers
+};
+
+// The OctoMap occupancy octree.
+struct OctomapSettings {
+  double resolution_m = 0.05;
+  double max_range_m = 5.0;  // rays longer than this are cut there (free space only, no hit)
+  double prob_hit = 0.7;     // OctoMap's sensor model
+  double prob_miss = 0.4;
+  double clamp_min = 0.1192;
+  double clamp_max = 0.971;
+  double occupied_threshold = 0.5;
+};
+
+// When a pose update makes the octree rebuild from the stored keyframe clouds.
+struct RebuildSettings {
+  double min_interval_s = 5.0;      // at most once per interval (a rebuild re-casts every keyframe's rays)
+  double min_translation_m = 0.02;  // only when some keyframe moved more than this ...
+  double min_rotation_deg = 1.0;    // ... or turned more than this
+};
+
+// The 2-D occupancy grid: the octree between two heights, projected along `up` onto the floor plane.
+// Heights are measured along `up` from the world origin. The tracker's world is its first camera's frame
+// (x right, y down, z forward), so the default up is -y and heights are relative to that camera's centre.
+struct GridSettings {
+  double resolution_m = 0.05;
+  std::array<double, 3> up{0.0, -1.0, 0.0};  // world direction of "up"; normalised when read
+  double height_min_m = -1.0;                // the band of heights that can block a robot
+  double height_max_m = 0.5;
+};
+
+// Pictures written beside the map files.
+struct PictureSettings {
+  int size_px = 1000;                   // longer side of the cloud pictures
+  int grid_cell_px = 4;                 // pixels per grid cell in the grid picture
+  double oblique_elevation_deg = 35.0;  // the oblique view's angle above the floor plane
+  double oblique_azimuth_deg = -60.0;   // its direction around the up axis
+  double cut_above_m = 1.0;  // points higher than grid.height_max_m + this are left out (the ceiling)
+};
+
+struct MapperSettings {
+  CloudSettings cloud;
+  OctomapSettings octomap;
+  RebuildSettings rebuild;
+  GridSettings grid;
+  PictureSettings pictures;
+};
+
+}  // namespace bmp::mapper

@@ -1,0 +1,137 @@
+#include "mapper/occupancy_map.hpp"
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace bmp::mapper {
+
+namespace {
+
+std::unique_ptr<octomap::OcTree> makeTree(const OctomapSettings& s) {
+  auto tree = std::make_unique<octomap::OcTree>(s.resolution_m);
+  tree->setProbHit(s.prob_hit);
+  tree->setProbMiss(s.prob_miss);
+  tree->setClampingThresMin(s.clamp_min);
+  tree->setClampingThresMax(s.clamp_max);
+  tree->setOccupancyThres(s.occupied_threshold);
+  return tree;
+}
+
+// A leaf of the height band, in plane coordinates.
+struct BandLeaf {
+  Eigen::Vector2d centre;
+  double half_extent;
+  bool occupied;
+};
+
+std::vector<BandLeaf> bandLeaves(const octomap::OcTree& tree, const GridSettings& s, const PlaneFrame& f) {
+  // Half the extent of a unit cube seen along each plane axis (1/2 when the axis is a world axis).
+  const auto spread = [](const Eigen::Vector3d& a) { return 0.5 * a.cwiseAbs().sum(); };
+  const double up_spread = spread(f.up), x_spread = spread(f.x_axis), y_spread = spread(f.y_axis);
+  std::vector<BandLeaf> out;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
+    const double size = it.getSize();
+    const double h = f.height(c);
+    const double eps = 1e-6;  // a leaf that merely touches the band's edge is outside it
+    if (h + size * up_spread <= s.height_min_m + eps || h - size * up_spread >= s.height_max_m - eps)
+      continue;
+    out.push_back({f.planar(c), size * std::max(x_spread, y_spread), tree.isNodeOccupied(*it)});
+  }
+  return out;
+}
+
+void rasterise(const BandLeaf& leaf, OccupancyGrid2D& grid) {
+  const double r = grid.resolution;
+  const Eigen::Vector2d lo = (leaf.centre.array() - leaf.half_extent - grid.origin.array()) / r - 0.5;
+  const Eigen::Vector2d hi = (leaf.centre.array() + leaf.half_extent - grid.origin.array()) / r - 0.5;
+  const int c0 = std::max(0, static_cast<int>(std::ceil(lo.x() - 1e-6)));
+  const int r0 = std::max(0, static_cast<int>(std::ceil(lo.y() - 1e-6)));
+  const int c1 = std::min(grid.width - 1, static_cast<int>(std::floor(hi.x() + 1e-6)));
+  const int r1 = std::min(grid.height - 1, static_cast<int>(std::floor(hi.y() + 1e-6)));
+  for (int row = r0; row <= r1; ++row) {
+    for (int col = c0; col <= c1; ++col) {
+      int8_t& cell = grid.cells[static_cast<std::size_t>(row) * grid.width + col];
+      if (leaf.occupied)
+        cell = kCellOccupied;
+      else if (cell == kCellUnknown)
+        cell = kCellFree;
+    }
+  }
+}
+
+}  // namespace
+
+OccupancyMap::OccupancyMap(const OctomapSettings& settings)
+    : settings_(settings), tree_(makeTree(settings)) {}
+OccupancyMap::~OccupancyMap() = default;
+
+void OccupancyMap::clear() {
+  tree_ = makeTree(settings_);
+}
+
+void OccupancyMap::insertScan(const std::vector<Eigen::Vector3f>& points_world,
+                              const Eigen::Vector3d& origin) {
+  octomap::Pointcloud scan;
+  scan.reserve(points_world.size());
+  for (const auto& p : points_world) scan.push_back(p.x(), p.y(), p.z());
+  // discretize: endpoints in one voxel are cast once, which keeps integration fast.
+  tree_->insertPointCloud(scan,
+                          octomap::point3d(static_cast<float>(origin.x()), static_cast<float>(origin.y()),
+                                           static_cast<float>(origin.z())),
+                          settings_.max_range_m, false, true);
+}
+
+Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {
+  const octomap::OcTreeNode* node = tree_->search(p.x(), p.y(), p.z());
+  if (node == nullptr) return Occupancy::kUnknown;
+  return tree_->isNodeOccupied(node) ? Occupancy::kOccupied : Occupancy::kFree;
+}
+
+OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
+  OccupancyGrid2D grid;
+  grid.resolution = s.resolution_m;
+  grid.frame = PlaneFrame::fromUp(s.up);
+  const std::vector<BandLeaf> leaves = bandLeaves(*tree_, s, grid.frame);
+  if (leaves.empty()) return grid;
+  Eigen::Vector2d lo = leaves[0].centre, hi = lo;
+  for (const auto& l : leaves) {
+    const Eigen::Vector2d half = Eigen::Vector2d::Constant(l.half_extent);
+    lo = lo.cwiseMin(l.centre - half);
+    hi = hi.cwiseMax(l.centre + half);
+  }
+  // Cell edges on multiples of the resolution, where the octree's voxel edges are.
+  grid.origin = (lo / s.resolution_m).array().floor() * s.resolution_m;
+  grid.width = std::max(1, static_cast<int>(std::ceil((hi.x() - grid.origin.x()) / s.resolution_m - 1e-6)));
+  grid.height = std::max(1, static_cast<int>(std::ceil((hi.y() - grid.origin.y()) / s.resolution_m - 1e-6)));
+  grid.cells.assign(static_cast<std::size_t>(grid.width) * grid.height, kCellUnknown);
+  for (const auto& l : leaves) rasterise(l, grid);
+  return grid;
+}
+
+std::string OccupancyMap::binaryData() const {
+  std::ostringstream out;
+  tree_->writeBinaryData(out);
+  return out.str();
+}
+
+std::string OccupancyMap::binaryFile() const {
+  std::ostringstream out;
+  tree_->writeBinaryConst(out);
+  return out.str();
+}
+
+double OccupancyMap::resolution() const {
+  return tree_->getResolution();
+}
+std::size_t OccupancyMap::nodeCount() const {
+  return tree_->size();
+}
+std::size_t OccupancyMap::memoryBytes() const {
+  return tree_->memoryUsage();
+}
+
+}  // namespace bmp::mapper

@@ -1,0 +1,139 @@
+// The octree and the grid from hand-made keyframes: free space carved, a ghost cleared once the space behind
+// it is seen again, the grid's floor plane, and pose updates moving the cloud, the octree and the grid.
+#include <gtest/gtest.h>
+
+#include "mapper/mapper.hpp"
+#include "mapper_test_util.hpp"
+
+namespace bmp::mapper {
+namespace {
+
+using test::translation;
+using test::wallKeyframe;
+
+// Depths a little off voxel edges (multiples of 0.05), so a point's voxel does not depend on rounding.
+constexpr double kWall = 3.02;
+constexpr double kNear = 1.52;
+
+int8_t gridAt(const OccupancyGrid2D& grid, const Eigen::Vector3d& p_world) {
+  int col = 0, row = 0;
+  if (!grid.cellOf(grid.frame.planar(p_world), col, row)) return kCellUnknown;
+  return grid.at(col, row);
+}
+
+Eigen::Vector3d cloudMean(const PointList& cloud) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : cloud) sum += p.position().cast<double>();
+  return sum / static_cast<double>(cloud.size());
+}
+
+TEST(OccupancyMap, WallOccupiedSpaceBeforeItFreeBehindItUnknown) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  const OccupancyMap& map = mapper.occupancy();
+  EXPECT_EQ(map.query({0, 0, kWall + 0.005}), Occupancy::kOccupied);
+  EXPECT_EQ(map.query({0.5, -0.3, 1.5}), Occupancy::kFree);
+  EXPECT_EQ(map.query({0, 0, 4.0}), Occupancy::kUnknown);
+  EXPECT_GT(map.nodeCount(), 100u);
+}
+
+TEST(OccupancyMap, GhostIsClearedWhenTheSpaceBehindItIsSeenAgain) {
+  Mapper mapper(test::testSettings());
+  // A mover, not masked, stands in front of the wall in the first keyframe only.
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall, cv::Rect(70, 50, 20, 20), kNear)).ok);
+  const Eigen::Vector3d ghost(0, 0, kNear + 0.005);
+  EXPECT_EQ(mapper.occupancy().query(ghost), Occupancy::kOccupied);
+  // One hit outweighs two misses under OctoMap's default sensor model (0.85 against 2 x 0.41 log-odds) ...
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(1, SE3::Identity(), kWall)).ok);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(2, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(mapper.occupancy().query(ghost), Occupancy::kOccupied);
+  // ... and a third clears it.
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(3, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(mapper.occupancy().query(ghost), Occupancy::kFree);
+  EXPECT_EQ(mapper.occupancy().query({0, 0, kWall + 0.005}), Occupancy::kOccupied);
+}
+
+TEST(PlaneFrame, AxesFollowTheConfiguredUp) {
+  const PlaneFrame z_up = PlaneFrame::fromUp({0, 0, 1});
+  EXPECT_TRUE(z_up.x_axis.isApprox(Eigen::Vector3d::UnitX()));
+  EXPECT_TRUE(z_up.y_axis.isApprox(Eigen::Vector3d::UnitY()));
+  const PlaneFrame camera = PlaneFrame::fromUp({0, -1, 0});  // the tracker's first camera: y down
+  EXPECT_TRUE(camera.x_axis.isApprox(Eigen::Vector3d::UnitX()));
+  EXPECT_TRUE(camera.y_axis.isApprox(Eigen::Vector3d::UnitZ()));  // forward
+  const PlaneFrame tilted = PlaneFrame::fromUp({0.2, -0.9, 0.3});
+  EXPECT_NEAR(tilted.R_world_plane().determinant(), 1.0, 1e-9);
+  EXPECT_TRUE((tilted.R_world_plane().transpose() * tilted.R_world_plane()).isIdentity(1e-9));
+}
+
+TEST(OccupancyGrid, WallInTheBandIsOccupiedTheFloorBeforeItFree) {
+  Mapper mapper(test::testSettings());  // up -y, band [-1, 0.5] m around the camera's height
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  const OccupancyGrid2D grid = mapper.grid();
+  EXPECT_NEAR(grid.resolution, 0.05, 1e-12);
+  EXPECT_EQ(gridAt(grid, {0, 0, kWall + 0.005}), kCellOccupied);
+  EXPECT_EQ(gridAt(grid, {0, 0, 1.5}), kCellFree);
+  EXPECT_EQ(gridAt(grid, {0, 0, 4.5}), kCellUnknown);
+  // The origin pose maps plane coordinates into the world: cell (0, 0)'s corner.
+  const Eigen::Vector3d corner = grid.T_world_origin() * Eigen::Vector3d::Zero();
+  EXPECT_TRUE(grid.frame.planar(corner).isApprox(grid.origin));
+  // Outside the height band nothing counts: a band above the wall's top leaves every cell unknown.
+  GridSettings above = mapper.settings().grid;
+  above.height_min_m = 2.0;
+  above.height_max_m = 3.0;
+  EXPECT_TRUE(mapper.occupancy().project(above).cells.empty());
+}
+
+TEST(PoseUpdate, MovesTheCloudTheOctreeAndTheGrid) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(7, SE3::Identity(), kWall)).ok);
+  const Eigen::Vector3d before = cloudMean(mapper.cloud());
+  const Eigen::Vector3d old_only(-1.5, 0, kWall + 0.005), new_only(2.5, 0, kWall + 0.005);
+  EXPECT_EQ(mapper.occupancy().query(old_only), Occupancy::kOccupied);
+  EXPECT_EQ(mapper.occupancy().query(new_only), Occupancy::kUnknown);
+
+  const PoseUpdateResult r = mapper.updatePoses({{7, translation(1.0, 0, 0)}});
+  EXPECT_EQ(r.applied, 1);
+  EXPECT_TRUE(r.rejected.empty());
+  EXPECT_TRUE(cloudMean(mapper.cloud()).isApprox(before + Eigen::Vector3d(1, 0, 0), 1e-3));
+  EXPECT_TRUE(mapper.octreeStale());
+  ASSERT_TRUE(mapper.maintain(100.0));
+  EXPECT_EQ(mapper.occupancy().query(old_only), Occupancy::kUnknown);
+  EXPECT_EQ(mapper.occupancy().query(new_only), Occupancy::kOccupied);
+  const OccupancyGrid2D grid = mapper.grid();
+  EXPECT_EQ(gridAt(grid, new_only), kCellOccupied);
+  EXPECT_NE(gridAt(grid, old_only), kCellOccupied);
+}
+
+TEST(PoseUpdate, RebuildIsDebouncedAndSkipsTinyMoves) {
+  Mapper mapper(test::testSettings());  // at most every 5 s; 2 cm or 1 degree
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  mapper.updatePoses({{0, translation(0.005, 0, 0)}});
+  EXPECT_FALSE(mapper.octreeStale());  // 5 mm: the octree stays, the cloud follows
+  EXPECT_FALSE(mapper.maintain(0.0));
+  mapper.updatePoses({{0, translation(0.5, 0, 0)}});
+  EXPECT_TRUE(mapper.maintain(10.0));
+  mapper.updatePoses({{0, translation(1.0, 0, 0)}});
+  EXPECT_FALSE(mapper.maintain(12.0));  // 2 s after the last rebuild
+  EXPECT_TRUE(mapper.octreeStale());
+  EXPECT_TRUE(mapper.maintain(15.0));
+  EXPECT_EQ(mapper.rebuildCount(), 2);
+  mapper.updatePoses({{0, translation(2.0, 0, 0)}});
+  mapper.flush();  // at exit: whatever the interval
+  EXPECT_FALSE(mapper.octreeStale());
+}
+
+TEST(PoseUpdate, UnknownIdsAndBadPosesAreRefusedOneByOne) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(3, SE3::Identity(), kWall)).ok);
+  SE3 bad = SE3::Identity();
+  bad.translation().y() = std::numeric_limits<double>::infinity();
+  const PoseUpdateResult r =
+      mapper.updatePoses({{42, SE3::Identity()}, {3, bad}, {3, translation(0.1, 0, 0)}});
+  EXPECT_EQ(r.applied, 1);
+  ASSERT_EQ(r.rejected.size(), 2u);
+  EXPECT_EQ(r.rejected[0], "keyframe 42: unknown keyframe");
+  EXPECT_EQ(r.rejected[1], "keyframe 3: non-finite pose");
+}
+
+}  // namespace
+}  // namespace bmp::mapper

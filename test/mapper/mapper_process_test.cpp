@@ -1,0 +1,128 @@
+// The real bmp-mapper over LCM: keyframes, a pose update and bad input in; the grid out; the map files on
+// SIGUSR1 and again on SIGINT, with the counts of its heartbeat.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <bmp/keyframe_poses_t.hpp>
+#include <bmp/occupancy_grid_t.hpp>
+#include <bmp/process_status_t.hpp>
+
+#include "bmp/common/child_process.hpp"
+#include "bmp/lcm/lcm_node.hpp"
+#include "keyframe_message_util.hpp"
+#include "lcm_url.hpp"
+#include "mapper_test_util.hpp"
+#include "plan/plan_grid.hpp"
+#include "shared_data.hpp"
+
+namespace bmp::mapper {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MapperUnderTest {
+ public:
+  MapperUnderTest()
+      : url_(bmp::test::uniqueLcmUrl(0)), dir_(bmp::test::scratchDir("mapper_process")), node_(url_) {
+    node_.subscribe<process_status_t>("PROCESS_STATUS",
+                                      [this](const process_status_t& m, const ReceivedInfo&) {
+                                        if (m.name == "bmp-mapper") status = m;
+                                      });
+    node_.subscribe<occupancy_grid_t>("OCCUPANCY_GRID",
+                                      [this](const occupancy_grid_t& m, const ReceivedInfo&) { grid = m; });
+    child_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{bmp::test::binPath("bmp-mapper"), "--config",
+                                 bmp::test::sourceDir() + "/config/mapper.yaml", "--lcm-url", url_, "--out",
+                                 (dir_ / "map").string()},
+        ChildProcess::Output::kFile, logPath());
+  }
+  bool pumpUntil(const std::function<bool()>& done, double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!done() && std::chrono::steady_clock::now() < end) node_.handle(20);
+    return done();
+  }
+  template <typename Msg>
+  void publish(const std::string& channel, const Msg& m) {
+    node_.publish(channel, m);
+  }
+  std::string log() const {
+    std::ifstream in(logPath());
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  std::string logPath() const { return (dir_ / "bmp-mapper.log").string(); }
+  fs::path mapDir() const { return dir_ / "map"; }
+  ChildProcess& child() { return *child_; }
+
+  std::optional<process_status_t> status;
+  std::optional<occupancy_grid_t> grid;
+
+ private:
+  std::string url_;
+  fs::path dir_;
+  LcmNode node_;
+  std::unique_ptr<ChildProcess> child_;
+};
+
+TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
+  MapperUnderTest m;
+  ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
+  ASSERT_TRUE(m.child().running()) << m.log();
+
+  for (int id = 0; id < 3; ++id)
+    m.publish("SLAM_KEYFRAME",
+              test::keyframeMessage(test::wallKeyframe(id, test::translation(0.2 * id, 0, 0), 3.02)));
+  keyframe_t corrupt = test::keyframeMessage(test::wallKeyframe(3, SE3::Identity(), 3.02));
+  for (std::size_t i = 40; i < corrupt.depth.data.size(); ++i) corrupt.depth.data[i] = 0x5a;
+  m.publish("SLAM_KEYFRAME", corrupt);
+  keyframe_poses_t poses;
+  poses.utime = 5000000;
+  poses.num_keyframes = 2;
+  poses.ids = {1, 99};
+  poses.T_world_cam = {toMsg(test::translation(0.5, 0, 0)), toMsg(SE3::Identity())};
+  m.publish("SLAM_KEYFRAME_POSES", poses);
+
+  // 3 keyframes and the pose message processed; the corrupt keyframe and the unknown id counted as malformed.
+  ASSERT_TRUE(m.pumpUntil(
+      [&] {
+        return m.status && m.status->processed >= 4 && m.status->malformed >= 2 &&
+               m.status->message.find("keyframes 3") != std::string::npos;
+      },
+      20))
+      << m.log();
+  EXPECT_EQ(m.status->received, 5);
+  EXPECT_EQ(m.status->processed, 4);
+  EXPECT_EQ(m.status->malformed, 2);
+  EXPECT_NE(m.status->message.find("keyframes 3"), std::string::npos) << m.status->message;
+  EXPECT_NE(m.status->message.find("octree nodes"), std::string::npos) << m.status->message;
+  ASSERT_TRUE(m.pumpUntil([&] { return m.grid.has_value(); }, 10));
+  EXPECT_EQ(m.grid->num_cells, m.grid->width * m.grid->height);
+
+  m.child().signal(SIGUSR1);
+  ASSERT_TRUE(m.pumpUntil([&] { return fs::exists(m.mapDir() / "occupancy.png"); }, 20)) << m.log();
+  EXPECT_TRUE(m.child().running());
+  EXPECT_EQ(m.child().stop(20.0), 0) << m.log();
+
+  const std::string log = m.log();
+  EXPECT_NE(log.find("keyframe 3: depth does not decode"), std::string::npos) << log;
+  EXPECT_NE(log.find("pose update for keyframe 99: unknown keyframe"), std::string::npos) << log;
+  EXPECT_NE(log.find("map saved (SIGUSR1)"), std::string::npos) << log;
+  EXPECT_NE(log.find("map saved (exit)"), std::string::npos) << log;
+  for (const char* name : {"map.pcd", "map.ply", "map.bt", "occupancy.pgm", "occupancy.yaml", "cloud_top.png",
+                           "cloud_oblique.png", "occupancy.png"})
+    EXPECT_GT(fs::file_size(m.mapDir() / name), 50u) << name;
+  const plan::PlanGrid grid = plan::readMapServerMap((m.mapDir() / "occupancy.yaml").string());
+  const Eigen::Vector2i wall = grid.cellOf({0.0, 3.025});
+  ASSERT_TRUE(grid.inside(wall.x(), wall.y()));
+  EXPECT_EQ(grid.at(wall.x(), wall.y()), plan::kOccupied);
+}
+
+}  // namespace
+}  // namespace bmp::mapper

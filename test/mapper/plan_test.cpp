@@ -1,0 +1,153 @@
+// bmp-plan's A* on hand-made grids (walls, gaps, robot radius, unknown cells, corners), the map_server
+// reader on the mapper's own files, and the bmp-plan executable on a map the mapper wrote.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "bmp/common/atomic_file.hpp"
+#include "bmp/common/child_process.hpp"
+#include "mapper/grid_files.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper_test_util.hpp"
+#include "plan/astar.hpp"
+#include "shared_data.hpp"
+
+namespace bmp::plan {
+namespace {
+
+// width x height free cells of 0.1 m, origin (0, 0).
+PlanGrid freeGrid(int width, int height) {
+  PlanGrid g;
+  g.resolution = 0.1;
+  g.width = width;
+  g.height = height;
+  g.cells.assign(static_cast<std::size_t>(width) * height, kFree);
+  return g;
+}
+
+void setCell(PlanGrid& g, int col, int row, int8_t value) {
+  g.cells[static_cast<std::size_t>(row) * g.width + col] = value;
+}
+
+PlanOptions pointRobot() {
+  PlanOptions o;
+  o.robot_radius_m = 0.0;
+  return o;
+}
+
+TEST(Astar, StraightLineOnAnOpenGrid) {
+  const PlanResult r = planPath(freeGrid(40, 40), {0.55, 0.55}, {3.55, 0.55}, pointRobot());
+  ASSERT_TRUE(r.found) << r.reason;
+  EXPECT_NEAR(r.length_m, 3.0, 1e-9);
+  EXPECT_EQ(r.cells.size(), 31u);
+  const PlanResult diagonal = planPath(freeGrid(40, 40), {0.55, 0.55}, {3.55, 3.55}, pointRobot());
+  EXPECT_NEAR(diagonal.length_m, 3.0 * std::sqrt(2.0), 1e-9);  // 8-connected: the diagonal is optimal
+}
+
+TEST(Astar, NoPathThroughAWallAndAroundItThroughAGap) {
+  PlanGrid g = freeGrid(40, 40);
+  for (int col = 0; col < 40; ++col) setCell(g, col, 20, kOccupied);
+  const PlanResult blocked = planPath(g, {0.55, 1.05}, {0.55, 3.05}, pointRobot());
+  EXPECT_FALSE(blocked.found);
+  EXPECT_NE(blocked.reason.find("no collision-free path"), std::string::npos);
+  for (int col = 30; col < 34; ++col) setCell(g, col, 20, kFree);  // a 0.4 m gap
+  const PlanResult through = planPath(g, {0.55, 1.05}, {0.55, 3.05}, pointRobot());
+  ASSERT_TRUE(through.found);
+  EXPECT_GT(through.length_m, 2 * std::hypot(2.5, 1.0));  // no shorter than the detour by the gap at x = 3
+  for (const auto& c : through.cells) EXPECT_NE(g.at(c.x(), c.y()), kOccupied);
+  // A robot 0.5 m wide does not fit through 0.4 m.
+  PlanOptions wide;
+  wide.robot_radius_m = 0.25;
+  EXPECT_FALSE(planPath(g, {0.55, 1.05}, {0.55, 3.05}, wide).found);
+}
+
+TEST(Astar, RobotRadiusKeepsThePathAwayFromObstacles) {
+  PlanGrid g = freeGrid(40, 40);
+  setCell(g, 20, 20, kOccupied);
+  PlanOptions o;
+  o.robot_radius_m = 0.3;
+  const PlanResult r = planPath(g, {0.55, 2.05}, {3.55, 2.05}, o);
+  ASSERT_TRUE(r.found);
+  for (const auto& p : r.points) EXPECT_GT((p - g.centreOf(20, 20)).norm(), 0.3 - 1e-9);
+  const PlanResult start_blocked = planPath(g, {2.15, 2.05}, {3.55, 2.05}, o);
+  EXPECT_FALSE(start_blocked.found);
+  EXPECT_NE(start_blocked.reason.find("start is blocked"), std::string::npos);
+  EXPECT_NE(planPath(g, {-1, 0}, {1, 1}, o).reason.find("start lies outside"), std::string::npos);
+}
+
+TEST(Astar, UnknownCellsBlockUnlessToldOtherwise) {
+  PlanGrid g = freeGrid(20, 20);
+  for (int col = 0; col < 20; ++col) setCell(g, col, 10, kUnknown);
+  EXPECT_FALSE(planPath(g, {0.55, 0.55}, {0.55, 1.95}, pointRobot()).found);
+  PlanOptions o = pointRobot();
+  o.unknown_is_blocked = false;
+  EXPECT_TRUE(planPath(g, {0.55, 0.55}, {0.55, 1.95}, o).found);
+}
+
+TEST(Astar, DiagonalStepsDoNotCutCorners) {
+  PlanGrid g = freeGrid(3, 3);
+  setCell(g, 1, 0, kOccupied);
+  setCell(g, 0, 1, kOccupied);
+  // (0,0) touches (1,1) only through the corner between two obstacles.
+  EXPECT_FALSE(planPath(g, {0.05, 0.05}, {0.15, 0.15}, pointRobot()).found);
+}
+
+TEST(MapServerReader, ReadsTheMappersGridBack) {
+  const auto dir = test::scratchDir("plan_reader");
+  mapper::OccupancyGrid2D grid;
+  grid.resolution = 0.05;
+  grid.width = 4;
+  grid.height = 3;
+  grid.origin = {-1.0, 2.5};
+  grid.cells = {0, 100, -1, 0, 0, 0, 0, 0, 100, 100, -1, -1};
+  writeFileAtomically((dir / "g.pgm").string(), mapper::encodePgm(grid));
+  writeFileAtomically((dir / "g.yaml").string(), mapper::encodeMapYaml(grid, "g.pgm"));
+  const PlanGrid read = readMapServerMap((dir / "g.yaml").string());
+  EXPECT_EQ(read.width, 4);
+  EXPECT_EQ(read.height, 3);
+  EXPECT_NEAR(read.resolution, 0.05, 1e-9);
+  EXPECT_NEAR(read.origin.x(), -1.0, 1e-9);
+  EXPECT_NEAR(read.origin.y(), 2.5, 1e-9);
+  EXPECT_EQ(read.cells, grid.cells);
+  EXPECT_THROW(readMapServerMap((dir / "missing.yaml").string()), MapFileError);
+}
+
+// bmp-plan on files bmp_mapper wrote from a wall 3 m ahead (up is the camera's -y: the plane is x, z).
+class PlanTool : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = test::scratchDir("plan_tool");
+    mapper::Mapper m(mapper::test::testSettings());
+    ASSERT_TRUE(m.integrate(mapper::test::wallKeyframe(0, SE3::Identity(), 3.02)).ok);
+    mapper::writeMapFiles(dir.string(), m);
+  }
+  int plan(const std::string& from, const std::string& to, std::string& output) {
+    const std::string log = (dir / "plan.log").string();
+    ChildProcess child({test::binPath("bmp-plan"), "--map", (dir / "occupancy.yaml").string(), "--from", from,
+                        "--to", to, "--robot-radius", "0.1", "--out", (dir / "path.png").string(),
+                        "--path-out", (dir / "path.txt").string()},
+                       ChildProcess::Output::kFile, log);
+    const auto status = child.wait(30);
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    output = text.str();
+    return status.value_or(-1);
+  }
+  std::filesystem::path dir;
+};
+
+TEST_F(PlanTool, FindsAPathBetweenFreeCellsAndNoneBeyondTheWall) {
+  std::string out;
+  EXPECT_EQ(plan("0,0.8", "0.6,2.2", out), 0) << out;
+  EXPECT_NE(out.find("path length"), std::string::npos) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "path.png"));
+  EXPECT_NE(test::readFirstLine((dir / "path.txt").string()).find("# x y"), std::string::npos);
+  EXPECT_EQ(plan("0,0.8", "0,4.0", out), 1) << out;  // behind the wall: unknown, and the wall is in the way
+  EXPECT_NE(out.find("no path"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace bmp::plan

@@ -1,0 +1,113 @@
+// bmp-bench-mapper: feeds keyframes through the mapper library (no LCM) and prints the integration time per
+// keyframe (median, p95), the map's size and the peak resident memory. Keyframes: every Nth frame of a
+// TUM folder with its ground-truth pose (no masks), or of the synthetic scene (ground-truth masks).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bmp/common/config.hpp"
+#include "bmp/common/tool_main.hpp"
+#include "bmp/lcm/process.hpp"
+#include "capture/camera_selection.hpp"
+#include "capture/synthetic_scene.hpp"
+#include "capture/tum_sequence.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper/mapper_config.hpp"
+#include "mapper/memory_usage.hpp"
+
+namespace {
+
+using namespace bmp;
+
+// The ground-truth pose nearest in time (within 0.02 s), or false.
+bool poseAt(const Trajectory& gt, double stamp, SE3& T) {
+  double best = 0.02;
+  bool found = false;
+  for (const auto& p : gt) {
+    if (std::abs(p.stamp - stamp) <= best) {
+      best = std::abs(p.stamp - stamp);
+      T = p.T_world_cam;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void feedTum(const ArgParser& args, int every, int limit, mapper::Mapper& m) {
+  const capture::SequenceIndex index = capture::indexSequence(args.value("dataset"));
+  if (index.groundtruth.empty()) throw std::runtime_error(args.value("dataset") + ": no groundtruth.txt");
+  const CameraIntrinsics camera =
+      capture::selectCamera(args.value("dataset"), args.value("camera"), configDir() + "/cameras").intrinsics;
+  int fed = 0;
+  for (std::size_t i = 0; i < index.frames.size() && fed < limit; i += every) {
+    mapper::KeyframeInput kf;
+    kf.id = static_cast<int64_t>(i);
+    kf.camera = camera;
+    if (!poseAt(index.groundtruth, index.frames[i].rgb_stamp, kf.T_world_cam)) continue;
+    kf.color = cv::imread(index.frames[i].rgb_path, cv::IMREAD_COLOR);
+    kf.depth = cv::imread(index.frames[i].depth_path, cv::IMREAD_UNCHANGED);
+    const mapper::IntegrateResult r = m.integrate(kf);
+    if (!r.ok) std::fprintf(stderr, "frame %zu: %s\n", i, r.reason.c_str());
+    fed += r.ok;
+  }
+}
+
+void feedSynthetic(int every, int limit, mapper::Mapper& m) {
+  const capture::SyntheticScene scene{capture::SyntheticSceneConfig{}};
+  int fed = 0;
+  for (int i = 0; i < scene.numFrames() && fed < limit; i += every, ++fed) {
+    const capture::SyntheticFrame f = scene.render(i);
+    mapper::KeyframeInput kf{i, f.stamp, f.T_world_cam, scene.camera(), f.bgr, f.depth, f.mask};
+    m.integrate(kf);
+  }
+}
+
+int bench(const ArgParser& args) {
+  const Config file = Config::fromFile(args.value("config"));
+  mapper::MapperSettings settings = mapper::mapperSettingsFromConfig(file.section("mapper"));
+  file.ignore("process");
+  file.finish();
+  if (args.given("pixel-step")) settings.cloud.pixel_step = static_cast<int>(args.integer("pixel-step"));
+  if (args.flag("synthetic")) settings.grid = {settings.grid.resolution_m, {0, 0, 1}, 0.1, 1.9};  // z up
+  const int every = static_cast<int>(args.integer("every"));
+  const int limit = args.given("keyframes") ? static_cast<int>(args.integer("keyframes")) : 1 << 30;
+  if (every < 1) throw ArgError("--every must be at least 1");
+  mapper::Mapper m(settings);
+  if (args.flag("synthetic"))
+    feedSynthetic(every, limit, m);
+  else if (args.given("dataset"))
+    feedTum(args, every, limit, m);
+  else
+    throw ArgError("give --dataset DIR or --synthetic");
+  const TimingStats& t = m.integrationTimes();
+  std::printf("keyframes        %zu\n", t.count());
+  std::printf("integrate ms     median %.1f, p95 %.1f, max %.1f\n", t.median(), t.p95(), t.max());
+  std::printf("cloud points     %zu\n", m.cloud().size());
+  std::printf("octree nodes     %zu (%.1f MiB)\n", m.occupancy().nodeCount(),
+              static_cast<double>(m.occupancy().memoryBytes()) / (1 << 20));
+  std::printf("peak resident    %.0f MiB\n", static_cast<double>(mapper::peakResidentBytes()) / (1 << 20));
+  if (args.given("out"))
+    std::printf("files            %zu in %s\n", mapper::writeMapFiles(args.value("out"), m).size(),
+                args.value("out").c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ArgParser args(
+      "bmp-bench-mapper",
+      "Integrates keyframes into the mapper library (no LCM) and prints integration time per keyframe "
+      "(median, p95), map size and peak resident memory.");
+  args.addOption("dataset", "DIR", "TUM-format folder with groundtruth.txt (keyframes get no masks)");
+  args.addFlag("synthetic", "use the built-in synthetic scene instead (ground-truth masks)");
+  args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else by the folder's name");
+  args.addOption("every", "N", "a keyframe every N frames", "10");
+  args.addOption("keyframes", "N", "stop after N keyframes");
+  args.addOption("pixel-step", "N", "override mapper.cloud.pixel_step");
+  args.addOption("config", "FILE", "mapper YAML", configDir() + "/mapper.yaml");
+  args.addOption("out", "DIR", "also write the map files here");
+  return runTool(args, argc, argv, bench);
+}

@@ -1,0 +1,43 @@
+#include "plan/live_grid.hpp"
+
+#include <bmp/occupancy_grid_t.hpp>
+
+#include <optional>
+
+#include "bmp/common/timing.hpp"
+#include "bmp/lcm/conversions.hpp"
+#include "bmp/lcm/lcm_node.hpp"
+
+namespace bmp::plan {
+
+namespace {
+
+PlanGrid fromMessage(const occupancy_grid_t& m) {
+  if (!(m.resolution > 0) || m.width <= 0 || m.height <= 0 ||
+      static_cast<int64_t>(m.width) * m.height != m.num_cells)
+    throw MapFileError("OCCUPANCY_GRID message: inconsistent size or resolution");
+  PlanGrid grid;
+  grid.resolution = m.resolution;
+  grid.width = m.width;
+  grid.height = m.height;
+  grid.cells = m.cells;
+  // The origin pose's rotation holds the plane's axes: its corner in plane coordinates is R^T t.
+  const SE3 T_world_origin = fromMsg(m.origin);
+  grid.origin = (T_world_origin.linear().transpose() * T_world_origin.translation()).head<2>();
+  return grid;
+}
+
+}  // namespace
+
+PlanGrid receiveLiveGrid(const std::string& lcm_url, const std::string& channel, double timeout_s) {
+  LcmNode node(resolveLcmUrl(lcm_url));
+  std::optional<occupancy_grid_t> latest;
+  node.subscribe<occupancy_grid_t>(channel,
+                                   [&](const occupancy_grid_t& m, const ReceivedInfo&) { latest = m; });
+  Stopwatch watch;
+  while (!latest && watch.elapsedMs() < timeout_s * 1000.0) node.handle(100);
+  if (!latest) throw MapFileError("no " + channel + " message within " + std::to_string(timeout_s) + " s");
+  return fromMessage(*latest);
+}
+
+}  // namespace bmp::plan
