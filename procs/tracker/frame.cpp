@@ -109,6 +109,14 @@ Frame::Frame(int64_t s, double t, std::shared_ptr<const Features> feat)
     : seq(s), stamp(t), features(std::move(feat)) {
   points.assign(features->size(), nullptr);
   outlier.assign(features->size(), 0);
+  moving.assign(features->size(), 0.0f);
+  dynamic.assign(features->size(), 0);
+}
+
+int Frame::numDynamic() const {
+  int n = 0;
+  for (uint8_t d : dynamic) n += d != 0;
+  return n;
 }
 
 void Frame::setPose(const SE3& T_world_cam) {

@@ -82,6 +82,14 @@ class Frame {
   std::shared_ptr<const Features> features;
   std::vector<std::shared_ptr<MapPoint>> points;  // per keypoint, null when unmatched
   std::vector<uint8_t> outlier;                   // per keypoint, set by pose optimisation
+  // The dynamic stage's view of each keypoint (dynamic_stage.hpp): this frame's box observation (1 z = d,
+  // 0 z = s; empty when no boxes came for the frame), P(dynamic), and whether that is over the threshold.
+  // A dynamic keypoint keeps its match (its probability travels on) but takes no part in the pose.
+  std::vector<int8_t> box_z;
+  std::vector<float> moving;
+  std::vector<uint8_t> dynamic;
+  bool isDynamic(std::size_t i) const { return dynamic[i] != 0; }
+  int numDynamic() const;
 
   void setPose(const SE3& T_world_cam);
   const SE3& T_world_cam() const { return T_world_cam_; }

@@ -22,7 +22,8 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
   std::vector<int> index;
   for (int i = 0; i < f.size(); ++i) {
     const auto& mp = frame.points[i];
-    if (!mp || mp->bad || f.excluded[i]) {
+    // A dynamic keypoint keeps its match (its probability travels on) but not its say in the pose.
+    if (!mp || mp->bad || f.excluded[i] || frame.isDynamic(i)) {
       frame.outlier[i] = 0;
       continue;
     }
@@ -54,7 +55,7 @@ int dropOutliers(Frame& frame) {
     if (frame.outlier[i] || frame.points[i]->bad) {
       frame.points[i].reset();
       frame.outlier[i] = 0;
-    } else if (!frame.points[i]->observations.empty()) {
+    } else if (!frame.points[i]->observations.empty() && !frame.isDynamic(i)) {
       ++in_map;
     }
   }

@@ -5,7 +5,13 @@
 namespace bmp::tracker {
 
 KeyFrame::KeyFrame(int64_t i, const Frame& frame)
-    : id(i), seq(frame.seq), stamp(frame.stamp), features(frame.features), points(frame.points) {
+    : id(i),
+      seq(frame.seq),
+      stamp(frame.stamp),
+      features(frame.features),
+      points(frame.points),
+      moving(frame.moving),
+      dynamic(frame.dynamic) {
   setPose(frame.T_world_cam());
   for (std::size_t k = 0; k < points.size(); ++k)
     if (points[k] && (frame.outlier[k] || points[k]->temporary() || points[k]->bad)) points[k].reset();

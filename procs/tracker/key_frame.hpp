@@ -22,6 +22,8 @@ class KeyFrame {
   const double stamp;
   const std::shared_ptr<const Features> features;
   std::vector<std::shared_ptr<MapPoint>> points;  // per keypoint
+  std::vector<float> moving;                      // per keypoint P(dynamic) when it was made (Frame::moving)
+  std::vector<uint8_t> dynamic;                   // per keypoint: over the threshold, so no new points here
 
   void setPose(const SE3& T_world_cam);
   const SE3& T_world_cam() const { return T_world_cam_; }

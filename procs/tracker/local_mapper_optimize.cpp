@@ -32,6 +32,9 @@ void LocalMapper::bundleAdjust(const std::shared_ptr<KeyFrame>& kf, std::unique_
   for (std::size_t k = 0; k < num_local; ++k) {
     for (const auto& mp : kfs[k]->points) {
       if (!mp || mp->bad || pt_index.count(mp.get())) continue;
+      // A point believed to move would pull the keyframes along with it.
+      if (config_.dynamic.mode != DynamicMode::kNone && mp->moving_probability > config_.dynamic.threshold)
+        continue;
       pt_index[mp.get()] = static_cast<int>(pts.size());
       pts.push_back(mp);
       ba.points.push_back({mp->id, mp->p_world});
@@ -107,7 +110,7 @@ int LocalMapper::triangulate(KeyFrame* kf, std::unique_lock<std::mutex>& lock) {
     const Features& f1 = *kf->features;
     const Features& f2 = *nb->features;
     for (const auto& [i1, i2] : pairs) {
-      if (kf->points[i1] || nb->points[i2]) continue;
+      if (kf->points[i1] || nb->points[i2] || kf->dynamic[i1] || nb->dynamic[i2]) continue;
       // Rays in the world frame; too little parallax is left to depth (or nothing).
       const Eigen::Vector3d x1((f1.un[i1].x() - g.cx) / g.fx, (f1.un[i1].y() - g.cy) / g.fy, 1.0);
       const Eigen::Vector3d x2((f2.un[i2].x() - g.cx) / g.fx, (f2.un[i2].y() - g.cy) / g.fy, 1.0);
@@ -153,6 +156,7 @@ int LocalMapper::triangulate(KeyFrame* kf, std::unique_lock<std::mutex>& lock) {
       const double factor = 1.5 * g.pyramid.factor;
       if (ratio_dist * factor < ratio_octave || ratio_dist > ratio_octave * factor) continue;
       auto mp = std::make_shared<MapPoint>(map_.newPointId(), p, f1.descriptors.row(i1), kf->id);
+      mp->moving_probability = std::max(kf->moving[i1], nb->moving[i2]);
       map_.addPoint(mp);
       map_.addObservation(kf, i1, mp);
       map_.addObservation(nb, i2, mp);

@@ -16,31 +16,48 @@ void addOptions(ArgParser& args) {
                  "every tracked frame's pose (TUM format): written as tracked, replaced by the optimised "
                  "trajectory on exit");
   args.addOption("keyframe-trajectory", "FILE", "the keyframe poses (TUM format), likewise");
+  args.addOption("frame-policy", "every|latest",
+                 "every: reproducible (wait for each frame's boxes, map inline; lockstep runs); latest: real "
+                 "time, never wait",
+                 "latest");
+  args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
   args.addOption("idle-exit", "SECONDS",
                  "exit once no frame arrived for this long after the first (0: never)", "0");
   args.addEpilog(
       "Subscribes RGBD_FRAME; publishes SLAM_POSE for every frame, SLAM_KEYFRAME for each new keyframe\n"
-      "(colour, depth, all-zero dynamic mask) and SLAM_KEYFRAME_POSES after local bundle adjustment.\n"
+      "(colour, depth, dynamic mask) and SLAM_KEYFRAME_POSES after local bundle adjustment; uses DETECTIONS\n"
+      "for the dynamic stage.\n"
       "Example:\n"
       "  bmp-tracker --trajectory out/trajectory.txt --keyframe-trajectory out/keyframes.txt\n");
 }
 
 int run(ProcessContext& ctx) {
-  const TrackerConfig config = trackerConfigFromConfig(ctx.config.section("tracker"));
+  TrackerConfig config = trackerConfigFromConfig(ctx.config.section("tracker"));
+  if (ctx.args.given("dynamic-mode")) config.dynamic.mode = parseDynamicMode(ctx.args.value("dynamic-mode"));
   const Config process = ctx.config.section("process");
   TrackerChannels channels;
   channels.frames = process.get<std::string>("frames_channel", channels.frames);
   channels.pose = process.get<std::string>("pose_channel", channels.pose);
   channels.keyframe = process.get<std::string>("keyframe_channel", channels.keyframe);
   channels.keyframe_poses = process.get<std::string>("keyframe_poses_channel", channels.keyframe_poses);
+  channels.detections = process.get<std::string>("detections_channel", channels.detections);
   const int capacity = process.get<int>("frame_queue_capacity", 4);
-  if (capacity < 1) throw ConfigError(process.origin() + ": process.frame_queue_capacity must be at least 1");
+  process.check(capacity >= 1, "frame_queue_capacity", "must be at least 1");
+  DetectionPolicy policy;
+  policy.wait_ms = process.get<double>("detections_wait_ms", policy.wait_ms);
+  process.check(policy.wait_ms >= 0, "detections_wait_ms", "must not be negative");
+  policy.keyframe_hold_ms = process.get<double>("keyframe_hold_ms", policy.keyframe_hold_ms);
+  process.check(policy.keyframe_hold_ms >= 0, "keyframe_hold_ms", "must not be negative");
+  const std::string frame_policy = ctx.args.value("frame-policy");
+  if (frame_policy != "every" && frame_policy != "latest")
+    throw ConfigError("--frame-policy must be every or latest, got '" + frame_policy + "'");
+  policy.reproducible = frame_policy == "every";
   finishConfig(ctx);
 
   TrackerOutputs outputs;
   outputs.trajectory = ctx.args.value("trajectory");
   outputs.keyframe_trajectory = ctx.args.value("keyframe-trajectory");
-  TrackerNode node(ctx, config, channels, static_cast<std::size_t>(capacity), outputs);
+  TrackerNode node(ctx, config, channels, static_cast<std::size_t>(capacity), outputs, policy);
   ctx.status.tick(true);
   node.run(ctx.args.number("idle-exit"));
   // Reached on every exit but a kill (the loop only ends by a stop request or idle-exit); after a kill the

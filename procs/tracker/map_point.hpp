@@ -34,7 +34,7 @@ class MapPoint {
   bool bad = false;
   int64_t first_kf_id;
   KeyFrame* reference = nullptr;          // keyframe whose observation defines the scale range
-  float moving_probability = 0.0f;        // P(dynamic), driven by the dynamic-object stage; 0 here
+  float moving_probability = 0.5f;        // P(dynamic): the posterior of the keypoints it matched
   std::shared_ptr<MapPoint> replaced_by;  // set when fusion merged it into another point
 
   bool temporary() const { return id < 0; }

@@ -26,6 +26,7 @@ Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
     : config_(config),
       geometry_(std::make_shared<const FrameGeometry>(camera, config)),
       extractor_(config.orb),
+      dynamic_(config.dynamic, config.pose),
       mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)) {}
 
 Tracker::~Tracker() {
@@ -40,6 +41,8 @@ TrackResult Tracker::track(const TrackerInput& input) {
   Stopwatch watch;
   TrackResult result;
   Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
+  dynamic_.observe(frame, input.boxes ? &*input.boxes : nullptr,
+                   last_frame_.features ? &last_frame_ : nullptr);
   {
     Stopwatch wait;
     const auto lock = map_.lockForTracking();
@@ -59,10 +62,12 @@ TrackResult Tracker::track(const TrackerInput& input) {
       if (tracked) {
         state_ = last_reloc_seq_ == frame.seq ? TrackingState::kRelocalised : TrackingState::kOk;
         // After relocalisation the last frame is from before the loss: no velocity from it.
-        if (state_ == TrackingState::kOk)
+        if (state_ == TrackingState::kOk) {
           velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
-        else
+          velocity_dt_ = frame.stamp - last_frame_.stamp;
+        } else {
           velocity_.reset();
+        }
         result.num_tracked = countTracked(frame);
         if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
       } else {
@@ -76,6 +81,11 @@ TrackResult Tracker::track(const TrackerInput& input) {
     result.num_map_points = static_cast<int>(map_.numPoints());
     result.num_keyframes = static_cast<int>(map_.numKeyFrames());
     result.reference_keyframe_id = reference_kf_ ? reference_kf_->id : -1;
+    result.num_dynamic = frame.numDynamic();
+    if (result.new_keyframe)
+      result.dynamic_mask =
+          dynamic_.mask(*frame.features, frame.dynamic, input.boxes ? &*input.boxes : nullptr, input.depth,
+                        geometry_->camera.intrinsics().depth_scale);
   }
   if (!config_.mapping.threaded) mapper_->processQueued();
   result.processing_ms = watch.elapsedMs();
@@ -105,13 +115,15 @@ bool Tracker::initialise(Frame& frame, TrackResult& result) {
   for (int i = 0; i < f.size(); ++i) with_depth += f.hasDepth(i) && !f.excluded[i];
   if (with_depth < config_.tracking.init_min_keypoints) return false;
   frame.setPose(SE3::Identity());
+  dynamic_.applyPriors(frame, *geometry_);  // nothing matched yet: the boxes alone decide
   auto kf = std::make_shared<KeyFrame>(map_.newKeyFrameId(), frame);
   map_.addKeyFrame(kf);
   for (int i = 0; i < f.size(); ++i) {
-    if (!f.hasDepth(i) || f.excluded[i]) continue;
+    if (!f.hasDepth(i) || f.excluded[i] || frame.isDynamic(i)) continue;
     auto mp = std::make_shared<MapPoint>(
         map_.newPointId(), geometry_->camera.backProject(f.un[i], f.depth[i]), f.descriptors.row(i), kf->id);
     mp->initGeometry(kf->center(), f.level(i), *geometry_);
+    mp->moving_probability = frame.moving[i];
     map_.addPoint(mp);
     map_.addObservation(kf.get(), i, mp);
     frame.points[i] = mp;
@@ -134,7 +146,9 @@ bool Tracker::needNewKeyFrame(const Frame& frame) const {
   const Features& f = *frame.features;
   int tracked_close = 0, untracked_close = 0;
   for (int i = 0; i < f.size(); ++i) {
-    if (!f.hasDepth(i) || f.depth[i] > geometry_->close_depth || f.excluded[i]) continue;
+    // A mover's keypoints are neither tracked nor missing structure: they do not call for a keyframe.
+    if (!f.hasDepth(i) || f.depth[i] > geometry_->close_depth || f.excluded[i] || frame.isDynamic(i))
+      continue;
     const auto& mp = frame.points[i];
     if (mp && !frame.outlier[i] && !mp->observations.empty())
       ++tracked_close;
@@ -161,10 +175,11 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   for (int i : f.nearestWithDepth()) {
     if (f.depth[i] > geometry_->close_depth && count >= config_.keyframes.new_points_min) break;
     ++count;
-    if (kf->points[i]) continue;
+    if (kf->points[i] || frame.isDynamic(i)) continue;
     const Eigen::Vector3d p = frame.T_world_cam() * geometry_->camera.backProject(f.un[i], f.depth[i]);
     auto mp = std::make_shared<MapPoint>(map_.newPointId(), p, f.descriptors.row(i), kf->id);
     mp->initGeometry(kf->center(), f.level(i), *geometry_);
+    mp->moving_probability = frame.moving[i];
     map_.addPoint(mp);
     map_.addObservation(kf.get(), i, mp);
     frame.points[i] = mp;
@@ -180,7 +195,7 @@ int Tracker::countTracked(const Frame& frame) const {
   int n = 0;
   for (std::size_t i = 0; i < frame.points.size(); ++i) {
     const auto& mp = frame.points[i];
-    n += mp && !frame.outlier[i] && !mp->bad && !mp->observations.empty();
+    n += mp && !frame.outlier[i] && !mp->bad && !mp->observations.empty() && !frame.isDynamic(i);
   }
   return n;
 }

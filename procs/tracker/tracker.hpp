@@ -10,6 +10,7 @@
 #include "bmp/common/camera_model.hpp"
 #include "bmp/common/se3.hpp"
 #include "bmp/common/tum_trajectory.hpp"
+#include "tracker/dynamic_stage.hpp"
 #include "tracker/frame.hpp"
 #include "tracker/local_mapper.hpp"
 #include "tracker/map.hpp"
@@ -29,6 +30,9 @@ struct TrackerInput {
   cv::Mat depth;  // CV_16UC1 (units of 1/depth_scale m) or CV_32FC1 metres, registered to image; may be empty
   KeypointWeightFn keypoint_weight;  // optional: per-keypoint weight, 0 excludes
   cv::Mat exclusion_mask;            // optional CV_8UC1: keypoints on nonzero pixels are excluded
+  // The detector's boxes for this frame (distorted pixels), when they came: the dynamic stage's
+  // observation. Without them the moving probabilities are carried on from the matches.
+  std::optional<std::vector<ObjectBox>> boxes;
 };
 
 struct TrackResult {
@@ -39,11 +43,13 @@ struct TrackResult {
   int num_keypoints = 0;
   int num_tracked = 0;   // inlier matches to map points used in the pose
   int num_excluded = 0;  // keypoints excluded by the weight hook or mask
+  int num_dynamic = 0;   // keypoints the dynamic stage kept out of the pose (P(dynamic) over threshold)
   int num_map_points = 0;
   int num_keyframes = 0;
   int64_t reference_keyframe_id = -1;
   std::optional<KeyFramePose> new_keyframe;    // made from this frame
   std::vector<KeyFramePose> keyframe_updates;  // poses moved by local BA since the previous frame
+  cv::Mat dynamic_mask;                        // with new_keyframe: CV_8UC1, 255 on movers (for the mapper)
   double extract_ms = 0.0;                     // ORB extraction
   double lock_wait_ms = 0.0;                   // waiting for local mapping to let go of the map
   double processing_ms = 0.0;                  // the whole call
@@ -65,14 +71,22 @@ class Tracker {
   Trajectory trajectory();
   Trajectory keyFrameTrajectory();
   TrackingState state() const { return state_; }
-  // Drops the constant-velocity prediction (e.g. after a gap in the input).
+  // Drops the constant-velocity prediction (e.g. after the input went back in time).
   void forgetMotion() { velocity_.reset(); }
+  // Boxes that came after their frame was tracked: if that frame made a keyframe, its keypoints and map
+  // points take the observation. Returns whether a keyframe of that seq was found.
+  bool applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes);
+  // The dynamic mask of keyframe id as it stands now (after late boxes); empty when it was culled.
+  cv::Mat keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, const cv::Mat& depth);
   const FrameGeometry& geometry() const { return *geometry_; }
   const TrackerConfig& config() const { return config_; }
 
  private:
   Frame makeFrame(const TrackerInput& input, TrackResult& result) const;
   bool initialise(Frame& frame, TrackResult& result);
+  // Priors and box observation into the frame's moving probabilities, then the pose without the
+  // dynamic keypoints.
+  void optimizePose(Frame& frame);
   bool trackWithMotionModel(Frame& frame);
   bool trackReferenceKeyFrame(Frame& frame);
   bool relocalise(Frame& frame);
@@ -95,12 +109,14 @@ class Tracker {
   TrackerConfig config_;
   std::shared_ptr<const FrameGeometry> geometry_;
   OrbExtractor extractor_;
+  DynamicStage dynamic_;
   Map map_;  // declared before the mapper, which uses it
   std::unique_ptr<LocalMapper> mapper_;
   TrackingState state_ = TrackingState::kInitialising;
   Frame last_frame_;
   SE3 last_T_ref_cam_ = SE3::Identity();  // last frame relative to its reference keyframe
-  std::optional<SE3> velocity_;           // T_last_current of the previous step
+  std::optional<SE3> velocity_;           // T_last_current of the previous step ...
+  double velocity_dt_ = 0.0;              // ... which spanned this many seconds
   std::shared_ptr<KeyFrame> reference_kf_;
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;

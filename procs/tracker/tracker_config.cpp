@@ -159,6 +159,34 @@ RelocalizationOptions relocalizationOptions(const Config& c) {
 
 }  // namespace
 
+DynamicOptions dynamicOptions(const Config& c) {
+  DynamicOptions o;
+  const std::string mode = c.get<std::string>("mode", toString(o.mode));
+  try {
+    o.mode = parseDynamicMode(mode);
+  } catch (const std::invalid_argument& e) {
+    c.check(false, "mode", e.what());
+  }
+  readFraction(c, "lambda", o.lambda);
+  readFraction(c, "omega", o.omega);
+  readFraction(c, "unmatched_prior", o.unmatched_prior);
+  readFraction(c, "threshold", o.threshold);
+  c.check(o.lambda + o.omega > 1.0, "omega", "with lambda must exceed 1 (else a box says nothing)");
+  readFraction(c, "medium_held_overlap", o.medium_held_overlap);
+  readFraction(c, "medium_moving_keypoints", o.medium_moving_keypoints);
+  readIn(c, "refine_core_fraction", o.refine_core_fraction, 0.05, 1.0);
+  readPositive(c, "refine_band_m", o.refine_band_m);
+  readAtLeast(c, "refine_band_ratio", o.refine_band_ratio, 0.0);
+  readPositive(c, "geo_chi2_factor", o.geo_chi2_factor);
+  readFraction(c, "geo_lambda", o.geo_lambda);
+  readFraction(c, "geo_omega", o.geo_omega);
+  c.check(o.geo_lambda + o.geo_omega > 1.0, "geo_omega", "with geo_lambda must exceed 1");
+  readAtLeast(c, "neighbour_radius_px", o.neighbour_radius_px, 0.0);
+  readPositive(c, "neighbour_depth_m", o.neighbour_depth_m);
+  readAtLeast(c, "mask_keypoint_radius_px", o.mask_keypoint_radius_px, 0);
+  return o;
+}
+
 TrackerConfig trackerConfigFromConfig(const Config& section) {
   TrackerConfig cfg;
   cfg.orb = orbOptions(section.section("orb"));
@@ -168,6 +196,7 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   cfg.keyframes = keyframeOptions(section.section("keyframes"));
   cfg.mapping = mappingOptions(section.section("mapping"));
   cfg.reloc = relocalizationOptions(section.section("relocalization"));
+  cfg.dynamic = dynamicOptions(section.section("dynamic"));
   return cfg;
 }
 

@@ -2,6 +2,7 @@
 // Every tunable of the tracker, with its default. The library never reads files: tracker_config.hpp fills
 // this from YAML (config/tracker.yaml), tests set fields directly.
 #include <cstddef>
+#include <string>
 
 namespace bmp::tracker {
 
@@ -93,6 +94,40 @@ struct RelocalizationOptions {
   int min_pnp_inliers = 10;
 };
 
+// The dynamic stage (dynamic_stage.hpp): which keypoints are kept out of the pose, new map points and
+// local BA because they lie on something that moves. `mode` is the ablation switch, each adding to the
+// one before: none (static SLAM), boxes (every keypoint in a moving box, at once), paper (the Bayesian
+// moving probability of An et al. 2025), depth (+ each person box cut to the person by depth), geometric
+// (+ each matched point's residual against the camera motion as a second observation).
+enum class DynamicMode { kNone, kBoxes, kPaper, kDepth, kGeometric };
+
+struct DynamicOptions {
+  DynamicMode mode = DynamicMode::kGeometric;
+  double lambda = 0.9;           // P(z = d | dynamic) of a box observation (the paper's lambda)
+  double omega = 0.9;            // P(z = s | static) of a box observation (the paper's omega)
+  double unmatched_prior = 0.5;  // prior of a keypoint matched to nothing
+  double threshold = 0.5;        // P(dynamic) above this: out of the pose, new points and BA
+  // A medium-dynamic box (chair, cup) counts as moving when this share of it lies in a person's box ...
+  double medium_held_overlap = 0.5;
+  // ... or when this share of the last frame's keypoints inside it were dynamic.
+  double medium_moving_keypoints = 0.5;
+  // Depth refinement: the person's depth is the median over the central core_fraction of the box; box
+  // pixels within max(band_m, band_ratio * depth) of it are the person's, the rest is background.
+  double refine_core_fraction = 0.4;
+  double refine_band_m = 0.35;
+  double refine_band_ratio = 0.15;
+  // Geometric observation: a matched point whose residual under the estimated pose exceeds
+  // geo_chi2_factor times the pose's chi-square threshold is observed moving (z = d), else static.
+  double geo_chi2_factor = 2.0;
+  double geo_lambda = 0.7;  // P(large residual | dynamic)
+  double geo_omega = 0.95;  // P(small residual | static)
+  // An unmatched keypoint takes its prior from matched neighbours this close (pixels, and metres in
+  // depth), so the rest of a mover's keypoints are not each a fresh 0.5.
+  double neighbour_radius_px = 24.0;
+  double neighbour_depth_m = 0.3;
+  int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
+};
+
 struct TrackerConfig {
   OrbOptions orb;
   TrackingOptions tracking;
@@ -101,6 +136,11 @@ struct TrackerConfig {
   KeyframeOptions keyframes;
   MappingOptions mapping;
   RelocalizationOptions reloc;
+  DynamicOptions dynamic;
 };
+
+const char* toString(DynamicMode mode);
+// Throws std::invalid_argument naming the accepted names.
+DynamicMode parseDynamicMode(const std::string& name);
 
 }  // namespace bmp::tracker

@@ -33,10 +33,36 @@ void Tracker::prepareLastFrame() {
   }
 }
 
+void Tracker::optimizePose(Frame& frame) {
+  dynamic_.applyPriors(frame, *geometry_);
+  optimizeFramePose(frame, *geometry_, config_.pose);
+}
+
+namespace {
+
+// The constant-velocity motion over dt, from one measured over velocity_dt: a dropped frame in between
+// must not leave the prediction a frame behind. Rotation by its angle-axis, translation linearly (the
+// motions between frames are small); beyond a few frames' worth the model says nothing.
+std::optional<SE3> scaledMotion(const SE3& velocity, double velocity_dt, double dt) {
+  constexpr double kMaxScale = 4.0;
+  if (velocity_dt <= 0.0 || dt <= 0.0) return velocity;
+  const double s = dt / velocity_dt;
+  if (s > kMaxScale) return std::nullopt;
+  const Eigen::AngleAxisd aa(velocity.rotation());
+  SE3 out = SE3::Identity();
+  out.linear() = Eigen::AngleAxisd(aa.angle() * s, aa.axis()).toRotationMatrix();
+  out.translation() = velocity.translation() * s;
+  return out;
+}
+
+}  // namespace
+
 bool Tracker::trackWithMotionModel(Frame& frame) {
   if (!velocity_ || !last_frame_.features) return false;
   const auto& o = config_.tracking;
-  frame.setPose(last_frame_.T_world_cam() * *velocity_);
+  const std::optional<SE3> motion = scaledMotion(*velocity_, velocity_dt_, frame.stamp - last_frame_.stamp);
+  if (!motion) return false;
+  frame.setPose(last_frame_.T_world_cam() * *motion);
   int matches = matchFromLastFrame(frame, last_frame_, *geometry_, o, o.motion_search_radius);
   if (matches < o.min_matches_motion) {
     frame.clearMatches();
@@ -46,7 +72,7 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
     frame.clearMatches();
     return false;
   }
-  optimizeFramePose(frame, *geometry_, config_.pose);
+  optimizePose(frame);
   const bool ok = dropOutliers(frame) >= o.min_inliers_motion;
   if (!ok) frame.clearMatches();
   return ok;
@@ -65,10 +91,32 @@ bool Tracker::trackReferenceKeyFrame(Frame& frame) {
     return false;
   frame.points = matches;
   frame.setPose(last_frame_.T_world_cam());
-  optimizeFramePose(frame, *geometry_, config_.pose);
+  optimizePose(frame);
   const bool ok = dropOutliers(frame) >= o.min_inliers_motion;
   if (!ok) frame.clearMatches();
   return ok;
+}
+
+bool Tracker::applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes) {
+  if (!dynamic_.enabled()) return false;
+  const auto lock = map_.lockForTracking();
+  const auto kfs = map_.keyFrames();
+  for (auto it = kfs.rbegin(); it != kfs.rend(); ++it) {
+    if ((*it)->seq < seq) break;  // ids grow with seq: nothing older can match
+    if ((*it)->seq != seq) continue;
+    dynamic_.observeLate(**it, boxes);
+    return true;
+  }
+  return false;
+}
+
+cv::Mat Tracker::keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, const cv::Mat& depth) {
+  const auto lock = map_.lockForTracking();
+  for (const auto& kf : map_.keyFrames())
+    if (kf->id == id)
+      return dynamic_.mask(*kf->features, kf->dynamic, boxes, depth,
+                           geometry_->camera.intrinsics().depth_scale);
+  return {};
 }
 
 bool Tracker::relocalise(Frame& frame) {
@@ -127,13 +175,18 @@ bool Tracker::trackLocalMap(Frame& frame) {
   const auto& o = config_.tracking;
   updateLocalMap(frame);
   const bool after_reloc = frame.seq - last_reloc_seq_ < 2 || state_ == TrackingState::kLost;
+  // Points already matched (from the last frame) were in view too: counted visible as the local map's are,
+  // or their found/visible ratio would look better than it is and culling would spare them.
+  for (const auto& mp : frame.points)
+    if (mp && !mp->bad && !mp->temporary()) ++mp->visible;
   matchLocalPoints(frame, local_points_, *geometry_, o, config_.matcher,
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
-  optimizeFramePose(frame, *geometry_, config_.pose);
+  optimizePose(frame);
+  dynamic_.conclude(frame, *geometry_);  // the geometric observation; map points take the posteriors
   int inliers = 0;
   for (std::size_t i = 0; i < frame.points.size(); ++i) {
     const auto& mp = frame.points[i];
-    if (!mp || frame.outlier[i] || mp->bad) continue;
+    if (!mp || frame.outlier[i] || mp->bad || frame.isDynamic(i)) continue;
     if (!mp->observations.empty()) {
       ++mp->found;
       ++inliers;

@@ -108,8 +108,29 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("relocalization.min_pnp_inliers", r.min_pnp_inliers);
 }
 
+void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
+  const DynamicOptions& d = c.dynamic;
+  put("dynamic.mode", std::string(toString(d.mode)));
+  put("dynamic.lambda", d.lambda);
+  put("dynamic.omega", d.omega);
+  put("dynamic.unmatched_prior", d.unmatched_prior);
+  put("dynamic.threshold", d.threshold);
+  put("dynamic.medium_held_overlap", d.medium_held_overlap);
+  put("dynamic.medium_moving_keypoints", d.medium_moving_keypoints);
+  put("dynamic.refine_core_fraction", d.refine_core_fraction);
+  put("dynamic.refine_band_m", d.refine_band_m);
+  put("dynamic.refine_band_ratio", d.refine_band_ratio);
+  put("dynamic.geo_chi2_factor", d.geo_chi2_factor);
+  put("dynamic.geo_lambda", d.geo_lambda);
+  put("dynamic.geo_omega", d.geo_omega);
+  put("dynamic.neighbour_radius_px", d.neighbour_radius_px);
+  put("dynamic.neighbour_depth_m", d.neighbour_depth_m);
+  put("dynamic.mask_keypoint_radius_px", d.mask_keypoint_radius_px);
+}
+
 std::map<std::string, std::string> fieldsOf(const TrackerConfig& c) {
   FieldPrinter put;
+  printDynamic(c, put);
   printOrbAndTracking(c, put);
   printMatcherAndPose(c, put);
   printKeyframesMappingReloc(c, put);
@@ -179,6 +200,12 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"mapping: {point_found_ratio: -0.1}", "mapping.point_found_ratio"},
       {"relocalization: {ransac_reprojection_px: 0}", "relocalization.ransac_reprojection_px"},
       {"relocalization: {min_matches: 3}", "relocalization.min_matches"},
+      {"dynamic: {mode: bayes}", "dynamic.mode"},
+      {"dynamic: {lambda: 1.2}", "dynamic.lambda"},
+      {"dynamic: {lambda: 0.4, omega: 0.5}", "dynamic.omega"},
+      {"dynamic: {threshold: -1}", "dynamic.threshold"},
+      {"dynamic: {refine_band_m: 0}", "dynamic.refine_band_m"},
+      {"dynamic: {geo_lambda: 0.2, geo_omega: 0.3}", "dynamic.geo_omega"},
   };
   for (const auto& [yaml, key] : bad) {
     const std::string msg = messageOf(yaml);

@@ -27,7 +27,7 @@ slam_pose_t toPoseMessage(const rgbd_frame_t& frame, const TrackResult& r) {
   out.state = static_cast<int8_t>(r.state);
   out.num_keypoints = r.num_keypoints;
   out.num_tracked = r.num_tracked;
-  out.num_dynamic = r.num_excluded;
+  out.num_dynamic = r.num_excluded + r.num_dynamic;
   out.num_map_points = r.num_map_points;
   out.reference_keyframe_id = r.reference_keyframe_id;
   out.processing_ms = static_cast<float>(r.processing_ms);

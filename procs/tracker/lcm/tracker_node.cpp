@@ -2,6 +2,7 @@
 
 #include "bmp/common/log.hpp"
 #include "bmp/lcm/conversions.hpp"
+#include "detector/lcm/detections_message.hpp"
 #include "tracker/lcm/tracker_messages.hpp"
 
 namespace bmp::tracker {
@@ -11,12 +12,18 @@ const char* const kLiveComment = "live poses as tracked; a clean exit replaces t
 }  // namespace
 
 TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels,
-                         std::size_t queue_capacity, const TrackerOutputs& outputs)
+                         std::size_t queue_capacity, const TrackerOutputs& outputs, DetectionPolicy policy)
     : ctx_(ctx),
       config_(std::move(config)),
       channels_(std::move(channels)),
       queue_(queue_capacity, WhenFull::kDropOldest),
+      policy_(policy),
       outputs_(outputs) {
+  // Reproducible runs map inline: the keyframe decision and BA no longer depend on thread timing.
+  if (policy_.reproducible) config_.mapping.threaded = false;
+  if (config_.dynamic.mode != DynamicMode::kNone)
+    ctx_.lcm.subscribe<detections_t>(
+        channels_.detections, [this](const detections_t& msg, const ReceivedInfo&) { onDetections(msg); });
   if (!outputs_.trajectory.empty()) live_trajectory_.emplace(outputs_.trajectory, kLiveComment);
   if (!outputs_.keyframe_trajectory.empty())
     live_keyframes_.emplace(outputs_.keyframe_trajectory, kLiveComment);
@@ -42,6 +49,49 @@ void TrackerNode::receive() {
   }
 }
 
+void TrackerNode::onDetections(const detections_t& msg) {
+  // Checked as the contract says (levels, classes, boxes inside the image); a bad one throws and is
+  // counted as malformed by the LCM node.
+  const detector::FrameDetections d = detector::fromDetectionsMessage(msg);
+  FrameBoxes boxes;
+  boxes.utime = d.utime;
+  boxes.usable = d.skipped.empty();
+  for (const auto& det : d.detections) boxes.boxes.push_back({det.box, det.level, det.class_id, det.score});
+  ++detections_heard_;
+  book_.add(d.seq, std::move(boxes));
+}
+
+std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& msg) {
+  if (config_.dynamic.mode == DynamicMode::kNone) return std::nullopt;
+  // Without any detector on the bus, waiting would only slow every frame: wait again once one is heard.
+  const bool wait = policy_.reproducible && (detections_heard_ > 0 || !warned_no_detections_);
+  const auto wait_ms = std::chrono::milliseconds(wait ? static_cast<int64_t>(policy_.wait_ms) : 0);
+  std::optional<FrameBoxes> got = book_.take(msg.seq, msg.utime, wait_ms);
+  if (!got && wait && detections_heard_ == 0 && !warned_no_detections_) {
+    warned_no_detections_ = true;
+    log::warn("no answer on ", channels_.detections, " within ", policy_.wait_ms,
+              " ms: tracking without boxes until the detector is heard");
+  }
+  if (!got || !got->usable) return std::nullopt;
+  return std::move(got->boxes);
+}
+
+void TrackerNode::releaseHeldKeyframes(bool all) {
+  while (!held_.empty()) {
+    HeldKeyframe& h = held_.front();
+    std::optional<FrameBoxes> late = book_.take(h.frame.seq, h.frame.utime, std::chrono::milliseconds(0));
+    if (!late && !all && h.held.elapsedMs() < policy_.keyframe_hold_ms) break;  // in order: the rest wait too
+    if (late && late->usable) {
+      late_applied_ += tracker_->applyLateBoxes(h.frame.seq, late->boxes);
+      const cv::Mat mask = tracker_->keyframeMask(h.keyframe.id, &late->boxes, h.depth);
+      if (!mask.empty()) h.mask = mask;
+    }
+    ctx_.lcm.publish(channels_.keyframe, toKeyFrameMessage(h.frame, h.color, h.depth, h.keyframe, h.mask));
+    ctx_.status.published();
+    held_.pop_front();
+  }
+}
+
 void TrackerNode::syncStatus() {
   const int64_t received = received_.load();
   const auto dropped = static_cast<int64_t>(queue_.dropped());
@@ -54,8 +104,9 @@ void TrackerNode::syncStatus() {
 void TrackerNode::run(double idle_exit_s) {
   Stopwatch idle;
   while (!ctx_.stop.requested()) {
-    std::optional<rgbd_frame_t> msg = queue_.popFor(std::chrono::milliseconds(100));
+    std::optional<rgbd_frame_t> msg = queue_.popFor(std::chrono::milliseconds(held_.empty() ? 100 : 10));
     syncStatus();
+    if (tracker_) releaseHeldKeyframes(false);
     if (msg) {
       process(*msg);
       idle.restart();
@@ -65,6 +116,7 @@ void TrackerNode::run(double idle_exit_s) {
     }
     ctx_.status.tick();
   }
+  if (tracker_) releaseHeldKeyframes(true);
   receiving_ = false;
   if (tracker_) tracker_->finish();
   log::info("tracked ", timing_.count(), " frames, ", lost_, " lost; ", stream_.lostBefore(),
@@ -109,15 +161,16 @@ void TrackerNode::process(const rgbd_frame_t& msg) {
   input.seq = msg.seq;
   input.image = color;
   input.depth = depth;
+  input.boxes = boxesFor(msg);
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
-  publish(msg, r, color, depth);
+  publish(msg, r, color, depth, input.boxes.has_value());
   ctx_.status.processed();
 }
 
 void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color,
-                          const cv::Mat& depth) {
+                          const cv::Mat& depth, bool had_boxes) {
   // On disk before it is announced: whoever saw the pose finds it in the file even if we are killed now.
   if (live_trajectory_ && r.ok()) live_trajectory_->append({r.stamp, r.T_world_cam});
   if (live_keyframes_ && r.new_keyframe)
@@ -125,9 +178,13 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
   ctx_.lcm.publish(channels_.pose, toPoseMessage(msg, r));
   ctx_.status.published();
   if (r.new_keyframe) {
-    if (empty_mask_.size() != color.size()) empty_mask_ = cv::Mat::zeros(color.size(), CV_8UC1);
-    ctx_.lcm.publish(channels_.keyframe, toKeyFrameMessage(msg, color, depth, *r.new_keyframe, empty_mask_));
-    ctx_.status.published();
+    const cv::Mat mask = r.dynamic_mask.empty() ? cv::Mat::zeros(color.size(), CV_8UC1) : r.dynamic_mask;
+    if (!had_boxes && config_.dynamic.mode != DynamicMode::kNone && !policy_.reproducible) {
+      held_.push_back({msg, color, depth, *r.new_keyframe, mask, Stopwatch()});  // its boxes may come yet
+    } else {
+      ctx_.lcm.publish(channels_.keyframe, toKeyFrameMessage(msg, color, depth, *r.new_keyframe, mask));
+      ctx_.status.published();
+    }
   }
   if (!r.keyframe_updates.empty()) {
     ctx_.lcm.publish(channels_.keyframe_poses, toKeyFramePosesMessage(msg.utime, r.keyframe_updates));

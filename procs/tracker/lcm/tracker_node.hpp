@@ -4,11 +4,13 @@
 // kernel's buffer; the main thread checks each frame (frame_checks.hpp), tracks it and publishes the
 // results. The process's main only reads configuration and runs it.
 #include <atomic>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 #include <thread>
 
+#include <bmp/detections_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/bounded_queue.hpp"
@@ -16,6 +18,7 @@
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/process.hpp"
+#include "tracker/detection_book.hpp"
 #include "tracker/tracker.hpp"
 #include "tracker/tracker_options.hpp"
 
@@ -26,6 +29,18 @@ struct TrackerChannels {
   std::string pose = channels::kPose;
   std::string keyframe = channels::kKeyframe;
   std::string keyframe_poses = channels::kKeyframePoses;
+  std::string detections = channels::kDetections;
+};
+
+// How the tracker uses the detector's answers (detection_book.hpp states the rule).
+struct DetectionPolicy {
+  // Lockstep: wait for each frame's answer (up to wait_ms) and run local mapping inline, so the same
+  // input gives the same trajectory. Real time: never wait, mapping in its own thread.
+  bool reproducible = false;
+  double wait_ms = 3000.0;
+  // Real time: a keyframe whose frame's answer has not come is held this long for it, so the mapper gets
+  // the mask with the boxes; its map points take the late observation either way.
+  double keyframe_hold_ms = 500.0;
 };
 
 // Where the trajectories go (empty: not written). Each is written pose by pose while tracking, so a killed
@@ -39,7 +54,7 @@ class TrackerNode {
  public:
   // Opens the outputs at once: an unwritable path fails at start-up, naming it (TrajectoryError).
   TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels, std::size_t queue_capacity,
-              const TrackerOutputs& outputs);
+              const TrackerOutputs& outputs, DetectionPolicy policy = {});
   ~TrackerNode();  // stops the receive thread
   TrackerNode(const TrackerNode&) = delete;
   TrackerNode& operator=(const TrackerNode&) = delete;
@@ -52,7 +67,12 @@ class TrackerNode {
  private:
   void receive();  // the receive thread's loop
   void process(const rgbd_frame_t& msg);
-  void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth);
+  void onDetections(const detections_t& msg);
+  std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg);
+  // Real time: publishes held keyframes whose answer came (with late boxes applied) or whose time is up.
+  void releaseHeldKeyframes(bool all);
+  void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth,
+               bool had_boxes);
   // Answers a frame that cannot be tracked with STATE_SKIPPED and the reason, warns and counts it.
   void skip(const rgbd_frame_t& msg, const std::string& reason);
   void syncStatus();  // the receive thread's counts into the heartbeat (main thread only)
@@ -65,8 +85,20 @@ class TrackerNode {
   std::atomic<int64_t> received_{0};
   int64_t received_reported_ = 0, dropped_reported_ = 0;
   FrameStream stream_;
+  DetectionPolicy policy_;
+  DetectionBook book_;
+  std::atomic<int64_t> detections_heard_{0};
+  bool warned_no_detections_ = false;
+  struct HeldKeyframe {
+    rgbd_frame_t frame;
+    cv::Mat color, depth;
+    KeyFramePose keyframe;
+    cv::Mat mask;
+    Stopwatch held;
+  };
+  std::deque<HeldKeyframe> held_;
+  int64_t late_applied_ = 0;
   std::unique_ptr<Tracker> tracker_;
-  cv::Mat empty_mask_;  // no dynamic handling yet: nothing is masked
   TrackerOutputs outputs_;
   std::optional<TumTrajectoryStream> live_trajectory_;
   std::optional<TumTrajectoryStream> live_keyframes_;

@@ -1,0 +1,47 @@
+#pragma once
+// Where the detector's answers wait for their frames. Detections arrive on their own (another process,
+// another thread, any order); the tracker asks for a frame's boxes when it tracks it. The rule:
+//   - lockstep (wait > 0): the tracker waits for the frame's answer up to the wait, so every run sees the
+//     same boxes;
+//   - real time (wait = 0): it never waits; a frame whose answer is not there yet is tracked on the
+//     probabilities carried by its matches, and an answer that comes later is handed over as late
+//     (applied to the keyframe the frame made, if it made one).
+// Bounded: only the newest `capacity` answers are kept.
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "tracker/dynamic_regions.hpp"
+
+namespace bmp::tracker {
+
+struct FrameBoxes {
+  int64_t utime = 0;
+  bool usable = true;  // false: the detector skipped the frame (no boxes to trust)
+  std::vector<ObjectBox> boxes;
+};
+
+class DetectionBook {
+ public:
+  explicit DetectionBook(std::size_t capacity = 256) : capacity_(capacity) {}
+
+  void add(int64_t seq, FrameBoxes boxes);
+  // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came (or it belongs to
+  // another frame with that seq). Taken answers are removed.
+  std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
+  std::size_t size() const;
+  int64_t discarded() const;  // answers pushed out unused by newer ones
+
+ private:
+  const std::size_t capacity_;
+  mutable std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::map<int64_t, FrameBoxes> by_seq_;
+  int64_t discarded_ = 0;
+};
+
+}  // namespace bmp::tracker

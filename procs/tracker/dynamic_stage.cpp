@@ -1,0 +1,199 @@
+#include "tracker/dynamic_stage.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include <opencv2/imgproc.hpp>
+
+#include "tracker/key_frame.hpp"
+#include "tracker/map_point.hpp"
+#include "tracker/pose_optimizer.hpp"
+
+namespace bmp::tracker {
+
+namespace {
+
+// Probabilities stay inside (floor, 1 - floor): at exactly 0 or 1 Bayes can never move them again.
+constexpr double kProbabilityFloor = 1e-3;
+
+bool inside(const cv::Rect2f& r, const cv::Point2f& p) {
+  return p.x >= r.x && p.y >= r.y && p.x < r.x + r.width && p.y < r.y + r.height;
+}
+
+bool usableMatch(const std::shared_ptr<MapPoint>& mp) {
+  return mp && !mp->bad && !mp->temporary();
+}
+
+}  // namespace
+
+DynamicStage::DynamicStage(const DynamicOptions& options, const PoseOptimizerOptions& pose)
+    : options_(options), pose_(pose) {
+  bayes_.lambda = options.lambda;
+  bayes_.omega = options.omega;
+  bayes_.unmatched_prior = options.unmatched_prior;
+  bayes_.threshold = options.threshold;
+  geometric_ = bayes_;
+  geometric_.lambda = options.geo_lambda;
+  geometric_.omega = options.geo_omega;
+}
+
+float DynamicStage::clampProbability(double p) const {
+  return static_cast<float>(std::clamp(p, kProbabilityFloor, 1.0 - kProbabilityFloor));
+}
+
+std::vector<DynamicStage::MovingRegion> DynamicStage::movingRegions(
+    const Features& f, const std::vector<ObjectBox>& boxes, const std::vector<float>& moving_share) const {
+  RegionOptions ro;
+  ro.medium_held_overlap = static_cast<float>(options_.medium_held_overlap);
+  ro.medium_moving_keypoints = static_cast<float>(options_.medium_moving_keypoints);
+  const std::vector<uint8_t> moving = movingBoxes(boxes, ro, moving_share);
+  const bool refine = options_.mode == DynamicMode::kDepth || options_.mode == DynamicMode::kGeometric;
+  std::vector<MovingRegion> regions;
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    if (!moving[b]) continue;
+    MovingRegion r{boxes[b].box};
+    if (refine) {
+      // The mover fills the middle of its box; the background shows at the sides and between the legs.
+      const float c = static_cast<float>(options_.refine_core_fraction);
+      const cv::Rect2f core(r.box.x + r.box.width * (1 - c) / 2, r.box.y + r.box.height * (1 - c) / 2,
+                            r.box.width * c, r.box.height * c);
+      std::vector<float> depths;
+      for (int k = 0; k < f.size(); ++k)
+        if (f.depth[k] > 0 && inside(core, f.keys[k].pt)) depths.push_back(f.depth[k]);
+      if (depths.size() >= 3) {
+        std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+        const float d = depths[depths.size() / 2];
+        const float band =
+            static_cast<float>(std::max(options_.refine_band_m, options_.refine_band_ratio * d));
+        r.near_m = d - band;
+        r.far_m = d + band;
+      }
+    }
+    regions.push_back(r);
+  }
+  return regions;
+}
+
+std::vector<int8_t> DynamicStage::boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
+                                                 const std::vector<float>& moving_share) const {
+  const std::vector<MovingRegion> regions = movingRegions(f, boxes, moving_share);
+  std::vector<int8_t> z(static_cast<std::size_t>(f.size()), 0);
+  for (int k = 0; k < f.size(); ++k) {
+    const cv::Point2f& p = f.keys[k].pt;
+    bool in_low = false;
+    for (const auto& b : boxes) in_low = in_low || (b.level == DynamicLevel::kLow && inside(b.box, p));
+    if (in_low) continue;
+    for (const auto& r : regions) {
+      // Without depth a keypoint in the box counts as the mover's (the conservative side).
+      const bool in_band =
+          r.far_m <= 0 || f.depth[k] <= 0 || (f.depth[k] >= r.near_m && f.depth[k] <= r.far_m);
+      if (inside(r.box, p) && in_band) {
+        z[k] = 1;
+        break;
+      }
+    }
+  }
+  return z;
+}
+
+void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const {
+  if (!enabled() || !boxes) return;
+  std::vector<float> share;
+  if (last && last->features) share = shareInBoxes(last->features->keys, *boxes, last->dynamic);
+  frame.box_z = boxObservation(*frame.features, *boxes, share);
+  if (options_.mode != DynamicMode::kBoxes) return;
+  // Boxes only: a keypoint in a moving box is dynamic in this frame, with no memory.
+  for (std::size_t i = 0; i < frame.box_z.size(); ++i) {
+    frame.moving[i] = frame.box_z[i];
+    frame.dynamic[i] = frame.box_z[i];
+  }
+}
+
+float DynamicStage::neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const {
+  const Features& f = *frame.features;
+  if (options_.mode != DynamicMode::kGeometric || options_.neighbour_radius_px <= 0 || f.depth[i] <= 0)
+    return static_cast<float>(options_.unmatched_prior);
+  double sum = 0.0;
+  int n = 0;
+  for (int j : f.inArea(g, f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px)) {
+    const auto& mp = frame.points[j];
+    if (j == i || !usableMatch(mp) || f.depth[j] <= 0) continue;
+    if (std::abs(f.depth[j] - f.depth[i]) > options_.neighbour_depth_m) continue;
+    sum += mp->moving_probability;
+    ++n;
+  }
+  return n > 0 ? static_cast<float>(sum / n) : static_cast<float>(options_.unmatched_prior);
+}
+
+void DynamicStage::applyPriors(Frame& frame, const FrameGeometry& g) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  for (int i = 0; i < frame.features->size(); ++i) {
+    const auto& mp = frame.points[i];
+    const double prior = usableMatch(mp) ? mp->moving_probability : neighbourPrior(frame, g, i);
+    const double p =
+        frame.box_z.empty() ? prior : updateMovingProbability(prior, frame.box_z[i] != 0, bayes_);
+    frame.moving[i] = clampProbability(p);
+    frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
+  }
+}
+
+void DynamicStage::conclude(Frame& frame, const FrameGeometry& g) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  const Features& f = *frame.features;
+  const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
+  for (int i = 0; i < f.size(); ++i) {
+    const auto& mp = frame.points[i];
+    if (!usableMatch(mp)) continue;
+    if (options_.mode == DynamicMode::kGeometric) {
+      // The residual against the camera motion estimated without the dynamic keypoints.
+      const PoseObservation o{mp->p_world, f.un[i], f.uRight(g, i), g.pyramid.inv_sigma2[f.level(i)],
+                              1.0,         false};
+      const double limit = options_.geo_chi2_factor * (o.u_right >= 0 ? pose_.chi2_rgbd : pose_.chi2_mono);
+      const bool moved = poseChi2(frame.T_cam_world(), o, camera) > limit;
+      frame.moving[i] = clampProbability(updateMovingProbability(frame.moving[i], moved, geometric_));
+      frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
+    }
+    mp->moving_probability = frame.moving[i];
+  }
+}
+
+void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  const std::vector<int8_t> z = boxObservation(*kf.features, boxes, {});
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    kf.moving[i] = clampProbability(updateMovingProbability(kf.moving[i], z[i] != 0, bayes_));
+    kf.dynamic[i] = isDynamic(kf.moving[i], bayes_);
+    const auto& mp = kf.points[i];
+    if (usableMatch(mp))
+      mp->moving_probability =
+          clampProbability(updateMovingProbability(mp->moving_probability, z[i] != 0, bayes_));
+  }
+}
+
+cv::Mat DynamicStage::mask(const Features& f, const std::vector<uint8_t>& dynamic,
+                           const std::vector<ObjectBox>* boxes, const cv::Mat& depth,
+                           double depth_scale) const {
+  cv::Mat m = cv::Mat::zeros(depth.size(), CV_8UC1);
+  if (!enabled()) return m;
+  if (boxes) {
+    const cv::Rect image(0, 0, m.cols, m.rows);
+    for (const MovingRegion& r : movingRegions(f, *boxes, {})) {
+      const cv::Rect box = cv::Rect(r.box) & image;
+      if (r.far_m <= 0) {
+        m(box).setTo(255);
+        continue;
+      }
+      for (int v = box.y; v < box.y + box.height; ++v)
+        for (int u = box.x; u < box.x + box.width; ++u) {
+          const double d =
+              depth.type() == CV_32FC1 ? depth.at<float>(v, u) : depth.at<uint16_t>(v, u) / depth_scale;
+          if (d <= 0 || (d >= r.near_m && d <= r.far_m)) m.at<uint8_t>(v, u) = 255;
+        }
+    }
+  }
+  for (int i = 0; i < f.size(); ++i)
+    if (dynamic[i]) cv::circle(m, f.keys[i].pt, options_.mask_keypoint_radius_px, 255, cv::FILLED);
+  return m;
+}
+
+}  // namespace bmp::tracker

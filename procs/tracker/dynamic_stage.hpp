@@ -1,0 +1,62 @@
+#pragma once
+// The dynamic stage: which keypoints lie on something that moves, frame by frame. Read this with
+// Tracker::track. For each frame:
+//   1. observe()      the detector's boxes for this frame, if they came, give each keypoint z = d or z = s
+//                     (the paper's region test; with DynamicMode::kDepth and up, a person's box is cut to
+//                     the person by depth; a chair or cup box counts only when held or seen moving);
+//   2. applyPriors()  before each pose optimisation: each keypoint's prior is the posterior of the map point
+//                     it matched (else of matched neighbours at its depth, else 0.5), updated by z;
+//   3. conclude()     after the final pose: each matched point's residual against the camera motion is a
+//                     second observation (kGeometric), and the map points take the posteriors.
+// A keypoint over the threshold keeps its match, so its probability travels on, but takes no part in the
+// pose, new map points or local BA.
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "tracker/dynamic_regions.hpp"
+#include "tracker/frame.hpp"
+#include "tracker/moving_probability.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+class DynamicStage {
+ public:
+  DynamicStage(const DynamicOptions& options, const PoseOptimizerOptions& pose);
+
+  bool enabled() const { return options_.mode != DynamicMode::kNone; }
+  // boxes: the detector's for this frame, or null when none came. last: the previous frame (or null),
+  // whose dynamic keypoints are the evidence that a medium box moves.
+  void observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const;
+  void applyPriors(Frame& frame, const FrameGeometry& g) const;
+  void conclude(Frame& frame, const FrameGeometry& g) const;
+  // A keyframe's late boxes (they came after it was tracked): its map points take the observation.
+  void observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const;
+  // The boxes that count as moving for these keypoints, each cut to the mover by depth when configured:
+  // per box, the depth band [near, far] in metres of the mover (0, inf when not refined).
+  struct MovingRegion {
+    cv::Rect2f box;
+    float near_m = 0.0f, far_m = 0.0f;  // far_m = 0: the whole box
+  };
+  std::vector<MovingRegion> movingRegions(const Features& f, const std::vector<ObjectBox>& boxes,
+                                          const std::vector<float>& moving_share) const;
+  // The per-pixel dynamic mask of a frame (CV_8UC1, 255 dynamic): its moving regions (by depth when
+  // refined) and a disk around every dynamic keypoint. depth: CV_16UC1 raw, scaled by depth_scale.
+  cv::Mat mask(const Features& f, const std::vector<uint8_t>& dynamic, const std::vector<ObjectBox>* boxes,
+               const cv::Mat& depth, double depth_scale) const;
+  const MovingProbabilityOptions& bayes() const { return bayes_; }
+
+ private:
+  std::vector<int8_t> boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
+                                     const std::vector<float>& moving_share) const;
+  float neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const;
+  float clampProbability(double p) const;
+
+  DynamicOptions options_;
+  PoseOptimizerOptions pose_;
+  MovingProbabilityOptions bayes_;
+  MovingProbabilityOptions geometric_;
+};
+
+}  // namespace bmp::tracker
