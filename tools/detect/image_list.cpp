@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "bmp/common/image_codec.hpp"
+
 namespace fs = std::filesystem;
 
 namespace bmp::detect_tools {
@@ -58,6 +60,17 @@ std::vector<ImageEntry> listImages(const std::string& input) {
   }
   if (out.empty()) throw std::runtime_error(input + ": no PNG or JPEG images found");
   return out;
+}
+
+detector::FrameJob loadFrameJob(const std::string& path, int64_t seq) {
+  detector::FrameJob job;
+  job.seq = seq;
+  job.color.data = readFileBytes(path);
+  const ImageProbe probe = probeEncodedImage(job.color.data);
+  job.color.width = probe.width;
+  job.color.height = probe.height;
+  job.color.encoding = probe.encoding;
+  return job;
 }
 
 }  // namespace bmp::detect_tools
