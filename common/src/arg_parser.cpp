@@ -79,6 +79,14 @@ double ArgParser::number(const std::string& name) const {
   return v;
 }
 
+std::vector<std::string> ArgParser::list(const std::string& name) const {
+  std::vector<std::string> items;
+  std::stringstream text(value(name));
+  for (std::string item; std::getline(text, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
 long long ArgParser::integer(const std::string& name) const {
   const std::string text = value(name);
   char* end = nullptr;

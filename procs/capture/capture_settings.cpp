@@ -1,20 +1,11 @@
 #include "capture/capture_settings.hpp"
 
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 
 namespace bmp::capture {
 
 namespace {
-
-std::vector<std::string> splitList(const std::string& comma_list) {
-  std::vector<std::string> items;
-  std::stringstream list(comma_list);
-  for (std::string item; std::getline(list, item, ',');)
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
 
 // A broken rule names where the value came from: the option when the command line gave it, else the file
 // and key. An empty key marks an option with no configuration key, an empty option a key with no option.
@@ -59,7 +50,7 @@ void readPlayerOptions(const Config& section, const ArgParser& args, const Check
   p.channel = section.get<std::string>("channel", p.channel);
   check(!p.channel.empty(), "channel", "", "must not be empty");
   p.ack_channels = section.get<std::vector<std::string>>("ack_channels", p.ack_channels);
-  if (args.given("ack-channels")) p.ack_channels = splitList(args.value("ack-channels"));
+  if (args.given("ack-channels")) p.ack_channels = args.list("ack-channels");
   const std::string mode = overridden(section, args, "mode", "mode", toString(p.mode));
   check(parses(parseRateMode, mode, p.mode), "mode", "mode",
         "must be realtime, fast or lockstep, got '" + mode + "'");
@@ -135,7 +126,7 @@ CaptureSettings readCaptureSettings(const Config& section, const ArgParser& args
   s.cameras_dir = (fs::path(config_dir) / "cameras").string();
   readSelection(args, check, s.selection);
   s.groundtruth_out = args.value("groundtruth-out");
-  s.wait_for = splitList(args.value("wait-for"));
+  s.wait_for = args.list("wait-for");
   return s;
 }
 

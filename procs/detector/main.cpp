@@ -1,6 +1,5 @@
-// bmp-detector: YOLO detections, each box tagged with its dynamic level, for every RGB-D frame it processes.
-// The algorithm is bmp::detector::Detector, its LCM side DetectorNode (lcm/); this file reads the settings
-// and runs the node.
+// bmp-detector: YOLO boxes, each tagged with its dynamic level, for every RGB-D frame it processes. The
+// algorithm is detector::Detector, its LCM side DetectorNode (lcm/); this file reads settings, runs the node.
 #include <optional>
 #include <string>
 
@@ -30,9 +29,8 @@ int main(int argc, char** argv) {
       argc, argv,
       {"bmp-detector",
        "Runs YOLO (OpenCV DNN) on the colour image of each RGB-D frame and publishes the boxes, each with "
-       "its "
-       "class, score and dynamic level (high / medium / low, config/dynamic_classes.yaml). In mode 'latest' "
-       "a frame arriving while the detector is busy replaces the waiting one (drops are counted in "
+       "its class, score and dynamic level (high / medium / low, config/dynamic_classes.yaml). In mode "
+       "'latest' a frame arriving while the detector is busy replaces the waiting one (drops are counted in "
        "PROCESS_STATUS); in mode 'every' every frame is processed, for lockstep runs.",
        "detector.yaml",
        [](ArgParser& args) {

@@ -56,5 +56,15 @@ TEST(ArgParser, ErrorsNameTheOption) {
   }
 }
 
+TEST(ArgParser, ListSplitsAtCommasAndDropsEmptyItems) {
+  ArgParser p("prog", "summary");
+  p.addOption("names", "LIST", "comma-separated");
+  p.addOption("none", "LIST", "comma-separated");
+  const char* argv[] = {"prog", "--names", "a,b,,c,"};
+  ASSERT_TRUE(p.parse(3, argv));
+  EXPECT_EQ(p.list("names"), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_TRUE(p.list("none").empty());
+}
+
 }  // namespace
 }  // namespace bmp

@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "bmp/common/json_text.hpp"
+
 namespace bmp::detect_tools {
 
 using detector::DynamicLevel;
@@ -42,36 +44,17 @@ void drawDetections(cv::Mat& bgr, const std::vector<detector::Detection>& detect
   }
 }
 
-namespace {
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-}  // namespace
-
 std::string detectionsJson(const std::string& image, double stamp, const std::string& model, int width,
                            int height, double total_ms, const std::vector<detector::Detection>& detections) {
   std::ostringstream out;
   out.precision(6);
-  out << "{\"image\": " << quoted(image) << ", \"stamp\": " << std::fixed << stamp << std::defaultfloat
-      << ", \"model\": " << quoted(model) << ", \"width\": " << width << ", \"height\": " << height
+  out << "{\"image\": " << jsonString(image) << ", \"stamp\": " << std::fixed << stamp << std::defaultfloat
+      << ", \"model\": " << jsonString(model) << ", \"width\": " << width << ", \"height\": " << height
       << ", \"total_ms\": " << total_ms << ", \"detections\": [";
   for (std::size_t i = 0; i < detections.size(); ++i) {
     const auto& d = detections[i];
-    out << (i ? ", " : "") << "{\"label\": " << quoted(d.label) << ", \"class_id\": " << d.class_id
-        << ", \"score\": " << d.score << ", \"level\": " << quoted(detector::toString(d.level))
+    out << (i ? ", " : "") << "{\"label\": " << jsonString(d.label) << ", \"class_id\": " << d.class_id
+        << ", \"score\": " << d.score << ", \"level\": " << jsonString(detector::toString(d.level))
         << ", \"box\": [" << d.box.x << ", " << d.box.y << ", " << d.box.width << ", " << d.box.height
         << "]}";
   }

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+
+#include "bmp/common/image_codec.hpp"
+#include "bmp/common/tum_text_list.hpp"
 
 namespace fs = std::filesystem;
 
@@ -17,23 +18,13 @@ bool isImage(const fs::path& p) {
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
 }
 
+// rgb.txt read as bmp-capture reads it (the common TUM list parser), so both accept the same folders.
 std::vector<ImageEntry> readRgbTxt(const fs::path& folder) {
-  const fs::path list = folder / "rgb.txt";
-  std::ifstream in(list);
-  if (!in) throw std::runtime_error(list.string() + ": cannot open");
   std::vector<ImageEntry> out;
-  int line_no = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    ImageEntry e;
-    std::string file;
-    if (!(fields >> e.stamp >> file))
-      throw std::runtime_error(list.string() + ":" + std::to_string(line_no) + ": expected 'stamp file'");
-    e.path = (folder / file).string();
-    e.name = fs::path(file).stem().string();
-    out.push_back(e);
+  for (const auto& record :
+       readTumTextList((folder / "rgb.txt").string(), {"list file", "timestamp filename", 1, false})) {
+    const std::string& file = record.fields[0];
+    out.push_back({(folder / file).string(), fs::path(file).stem().string(), record.stamp});
   }
   return out;
 }
@@ -58,6 +49,17 @@ std::vector<ImageEntry> listImages(const std::string& input) {
   }
   if (out.empty()) throw std::runtime_error(input + ": no PNG or JPEG images found");
   return out;
+}
+
+detector::FrameJob loadFrameJob(const std::string& path, int64_t seq) {
+  detector::FrameJob job;
+  job.seq = seq;
+  job.color.data = readFileBytes(path);
+  const ImageProbe probe = probeEncodedImage(job.color.data);
+  job.color.width = probe.width;
+  job.color.height = probe.height;
+  job.color.encoding = probe.encoding;
+  return job;
 }
 
 }  // namespace bmp::detect_tools

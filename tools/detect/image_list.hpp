@@ -1,9 +1,12 @@
 #pragma once
 // Which images a tool should read: one file, every PNG/JPEG of a folder, or the colour frames of a TUM
-// sequence folder (rgb.txt).
+// sequence folder (rgb.txt); and one of them read as the detector's input.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "detector/detection_worker.hpp"
 
 namespace bmp::detect_tools {
 
@@ -16,5 +19,9 @@ struct ImageEntry {
 // Throws std::runtime_error naming the path when it does not exist, holds no images, or rgb.txt has a
 // malformed line.
 std::vector<ImageEntry> listImages(const std::string& input);
+
+// The file's bytes as a frame for processFrame, not decoded (decoding is part of the detector's time).
+// Throws ImageError when the file is unreadable or not a PNG/JPEG.
+detector::FrameJob loadFrameJob(const std::string& path, int64_t seq = 0);
 
 }  // namespace bmp::detect_tools

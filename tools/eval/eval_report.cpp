@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bmp/common/json_text.hpp"
 #include "bmp/common/number_format.hpp"
 #include "eval/eval_error.hpp"
 
@@ -22,35 +23,6 @@ std::string jsonNumber(double v) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "%.17g", v);
   return buffer;
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buffer[8];
-          std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-          out += buffer;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
 }
 
 std::string jsonStats(const ErrorStats& s) {

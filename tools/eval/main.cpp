@@ -1,151 +1,27 @@
 // bmp-eval: ATE and RPE of an estimated trajectory against ground truth, with the numbers of the TUM RGB-D
 // benchmark's evaluate_ate.py and evaluate_rpe.py --fixed_delta, plus optional JSON, plots and the aligned
 // estimate.
-#include <cctype>
-#include <filesystem>
+#include <exception>
 #include <iostream>
-#include <sstream>
 
-#include "bmp/common/arg_parser.hpp"
-#include "eval/ate.hpp"
-#include "eval/eval_error.hpp"
-#include "eval/eval_input.hpp"
-#include "eval/eval_plot.hpp"
-#include "eval/eval_report.hpp"
-#include "eval/rpe.hpp"
-
-namespace {
-
-constexpr int kBadInput = 2;
-
-bmp::ArgParser makeParser() {
-  bmp::ArgParser args(
-      "bmp-eval",
-      "Absolute trajectory error (ATE) and relative pose error (RPE) of an estimated trajectory, "
-      "computed as the TUM RGB-D benchmark's evaluate_ate.py and evaluate_rpe.py --fixed_delta "
-      "do. Both files in TUM format: 'timestamp tx ty tz qx qy qz qw' per line.");
-  args.addOption("gt", "FILE", "ground-truth trajectory (required)");
-  args.addOption("est", "FILE", "estimated trajectory (required)");
-  args.addOption("max-diff", "SECONDS", "largest stamp difference for an ATE association", "0.02");
-  args.addOption("offset", "SECONDS", "time offset added to the estimated stamps (ATE and RPE)", "0");
-  args.addOption("scale", "FACTOR", "scale applied to the estimated translations (ATE and RPE)", "1");
-  args.addOption("rpe-delta", "DELTA", "RPE pose-pair distance, in --rpe-unit", "1.0");
-  args.addOption("rpe-unit", "s|f", "unit of --rpe-delta: s (seconds) or f (frames)", "s");
-  args.addOption("json", "FILE", "also write the results as JSON");
-  args.addOption("plot-dir", "DIR",
-                 "write PNG plots there (created if needed): <label>_trajectory.png, <label>_errors.png");
-  args.addOption("aligned", "FILE", "write the whole estimate aligned to the ground truth (TUM format)");
-  args.addOption("label", "NAME",
-                 "name of the run, used in titles and plot file names (default: the --est file name "
-                 "without extension)");
-  args.addEpilog(
-      "\nExample:\n"
-      "  bmp-eval --gt ../shared/data/rgbd_bonn_crowd/groundtruth.txt --est out/crowd.txt \\\n"
-      "           --label crowd --json out/crowd_eval.json --plot-dir out/plots\n"
-      "\nNotes:\n"
-      "  RPE keeps every pose pair (the script samples 10000 at random when there are more).\n"
-      "  RPE pair error, as in the script: inv(inv(E_j) E_i) * inv(G_j) G_i (E estimate, G ground truth).\n"
-      "  Exit status: 0 success, 1 bad command line, 2 bad input (unreadable or malformed file, no "
-      "overlap).\n");
-  return args;
-}
-
-std::string defaultLabel(const std::string& est_path) {
-  const std::string stem = std::filesystem::path(est_path).stem().string();
-  return stem.empty() ? "estimate" : stem;
-}
-
-// A label may hold spaces or slashes; plot file names get a tame version of it.
-std::string fileSafe(const std::string& label) {
-  std::string out = label;
-  for (char& c : out) {
-    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-    if (!keep) c = '_';
-  }
-  return out;
-}
-
-int run(const bmp::ArgParser& args) {
-  namespace ev = bmp::eval;
-  ev::EvalReport report;
-  report.gt_path = args.value("gt");
-  report.est_path = args.value("est");
-  report.label = args.given("label") ? args.value("label") : defaultLabel(report.est_path);
-  if (report.label.empty()) report.label = "estimate";
-  report.ate_options.max_difference = args.number("max-diff");
-  report.ate_options.offset = args.number("offset");
-  report.ate_options.scale = args.number("scale");
-  report.rpe_options.delta = args.number("rpe-delta");
-  report.rpe_options.unit = ev::parseDeltaUnit(args.value("rpe-unit"));
-  report.rpe_options.offset = report.ate_options.offset;
-  report.rpe_options.scale = report.ate_options.scale;
-
-  const bmp::Trajectory gt = ev::loadTrajectory(report.gt_path);
-  const bmp::Trajectory est = ev::loadTrajectory(report.est_path);
-  report.gt_poses = gt.size();
-  report.est_poses = est.size();
-  try {
-    report.ate = ev::computeAte(gt, est, report.ate_options);
-  } catch (const ev::EvalError& e) {
-    throw ev::EvalError(report.est_path + " vs " + report.gt_path + ": " + e.what());
-  }
-  report.rpe = ev::computeRpe(gt, est, report.rpe_options);
-  report.body_offset = ev::measureBodyOffset(gt, est, report.ate, report.ate_options.offset);
-
-  std::cout << ev::formatText(report) << std::flush;
-  if (args.given("json")) ev::writeTextFile(args.value("json"), ev::formatJson(report));
-  const bmp::Trajectory aligned = ev::alignedTrajectory(est, report.ate.alignment, report.ate_options.scale);
-  if (args.given("aligned")) {
-    try {
-      bmp::writeTumTrajectory(args.value("aligned"), aligned);
-    } catch (const bmp::TrajectoryError& e) {
-      throw ev::EvalError(e.what());
-    }
-  }
-  if (args.given("plot-dir")) {
-    const std::filesystem::path dir = args.value("plot-dir");
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw ev::EvalError(dir.string() + ": cannot create plot directory: " + ec.message());
-    std::ostringstream caption;
-    caption << "delta " << report.rpe_options.delta << " " << ev::deltaUnitName(report.rpe_options.unit);
-    if (report.body_offset.constant())
-      caption << "; NOT MEANINGFUL: ground-truth orientations are not the camera's";
-    const std::string stem = fileSafe(report.label);
-    const std::string trajectory_png = (dir / (stem + "_trajectory.png")).string();
-    const std::string errors_png = (dir / (stem + "_errors.png")).string();
-    ev::plotTrajectoryTopView(trajectory_png, gt, aligned, report.ate, report.label);
-    ev::plotErrorsOverTime(errors_png, report.ate, report.rpe, gt.front().stamp, caption.str(), report.label);
-    std::cout << "plots: " << trajectory_png << ", " << errors_png << "\n";
-  }
-  return 0;
-}
-
-}  // namespace
+#include "eval/eval_command.hpp"
 
 int main(int argc, char** argv) {
-  bmp::ArgParser args = makeParser();
+  bmp::ArgParser args = bmp::eval::makeEvalParser();
   try {
     if (!args.parse(argc, argv)) {
       std::cout << args.help();
       return 0;
     }
-    if (!args.given("gt") || !args.given("est"))
-      throw bmp::ArgError("bmp-eval: --gt FILE and --est FILE are required (see --help)");
-    // Evaluate option values up front so a typo is a command-line error, not bad input.
-    for (const char* name : {"max-diff", "offset", "scale", "rpe-delta"}) args.number(name);
-    bmp::eval::parseDeltaUnit(args.value("rpe-unit"));
+    bmp::eval::checkEvalArgs(args);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;
   }
   try {
-    return run(args);
-  } catch (const bmp::eval::EvalError& e) {
+    return bmp::eval::runEval(args);
+  } catch (const std::exception& e) {  // EvalError and the rest: the input could not be evaluated
     std::cerr << "bmp-eval: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "bmp-eval: error: " << e.what() << "\n";
-    return kBadInput;
+    return bmp::eval::kBadInput;
   }
 }

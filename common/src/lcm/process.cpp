@@ -4,18 +4,12 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <random>
 
 #include <bmp/process_status_t.hpp>
 
 #include "bmp/common/log.hpp"
-
-#ifndef BMP_SOURCE_CONFIG_DIR
-#define BMP_SOURCE_CONFIG_DIR "config"
-#endif
 
 namespace bmp {
 
@@ -111,12 +105,6 @@ void StatusReporter::finish() {
 void finishConfig(const ProcessContext& context) {
   context.config.finish();
   for (const auto& line : context.config.effectiveValues()) log::info("  config ", line);
-}
-
-std::string configDir() {
-  if (const char* env = std::getenv("BMP_CONFIG_DIR"); env != nullptr && *env != '\0') return env;
-  if (std::filesystem::is_directory(BMP_SOURCE_CONFIG_DIR)) return BMP_SOURCE_CONFIG_DIR;
-  return "config";
 }
 
 int runProcess(int argc, char** argv, const ProcessSpec& spec) {

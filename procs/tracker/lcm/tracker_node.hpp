@@ -21,6 +21,7 @@
 #include "tracker/detection_book.hpp"
 #include "tracker/tracker.hpp"
 #include "tracker/tracker_options.hpp"
+#include "tracker/tracker_settings.hpp"
 
 namespace bmp::tracker {
 
@@ -30,17 +31,6 @@ struct TrackerChannels {
   std::string keyframe = channels::kKeyframe;
   std::string keyframe_poses = channels::kKeyframePoses;
   std::string detections = channels::kDetections;
-};
-
-// How the tracker uses the detector's answers (detection_book.hpp states the rule).
-struct DetectionPolicy {
-  // Lockstep: wait for each frame's answer (up to wait_ms) and run local mapping inline, so the same
-  // input gives the same trajectory. Real time: never wait, mapping in its own thread.
-  bool reproducible = false;
-  double wait_ms = 3000.0;
-  // Real time: a keyframe whose frame's answer has not come is held this long for it, so the mapper gets
-  // the mask with the boxes; its map points take the late observation either way.
-  double keyframe_hold_ms = 500.0;
 };
 
 // Where the trajectories go (empty: not written). Each is written pose by pose while tracking, so a killed

@@ -31,6 +31,8 @@ class ArgParser {
   std::string value(const std::string& name) const;
   double number(const std::string& name) const;  // throws ArgError naming the option
   long long integer(const std::string& name) const;
+  // The items of a comma-separated value ("a,b,,c" -> a, b, c); empty when the option is empty.
+  std::vector<std::string> list(const std::string& name) const;
   std::string help() const;
   const std::string& program() const { return program_; }
 

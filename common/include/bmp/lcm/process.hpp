@@ -10,6 +10,7 @@
 
 #include "bmp/common/arg_parser.hpp"
 #include "bmp/common/config.hpp"
+#include "bmp/common/config_dir.hpp"  // configDir(), which every process uses
 #include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 
@@ -87,8 +88,6 @@ void finishConfig(const ProcessContext& context);
 // Exit codes: 0 success, 1 runtime failure, 2 bad arguments or configuration.
 int runProcess(int argc, char** argv, const ProcessSpec& spec);
 
-// The repository's config/ folder: $BMP_CONFIG_DIR, else next to the executable's build tree, else ./config.
-std::string configDir();
 // Microseconds since the epoch, wall clock.
 int64_t nowUtime();
 

@@ -1,0 +1,66 @@
+#include "tracker/tracker_settings.hpp"
+
+#include "tracker/tracker_config.hpp"
+
+namespace bmp::tracker {
+
+void addTrackerOptions(ArgParser& args) {
+  args.addOption("trajectory", "FILE",
+                 "every tracked frame's pose (TUM format): written as tracked, replaced by the optimised "
+                 "trajectory on exit");
+  args.addOption("keyframe-trajectory", "FILE", "the keyframe poses (TUM format), likewise");
+  args.addOption("frame-policy", "every|latest",
+                 "every: reproducible (wait for each frame's boxes, map inline; lockstep runs); latest: real "
+                 "time, never wait",
+                 "latest");
+  args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
+  args.addOption("idle-exit", "SECONDS",
+                 "exit once no frame arrived for this long after the first (0: never)", "0");
+  args.addEpilog(
+      "Subscribes RGBD_FRAME; publishes SLAM_POSE for every frame, SLAM_KEYFRAME for each new keyframe\n"
+      "(colour, depth, dynamic mask) and SLAM_KEYFRAME_POSES after local bundle adjustment; uses DETECTIONS\n"
+      "for the dynamic stage.\n"
+      "Example:\n"
+      "  bmp-tracker --trajectory out/trajectory.txt --keyframe-trajectory out/keyframes.txt\n");
+}
+
+namespace {
+
+void applyOptions(const ArgParser& args, TrackerSettings& s) {
+  if (args.given("dynamic-mode")) {
+    try {
+      s.tracker.dynamic.mode = parseDynamicMode(args.value("dynamic-mode"));
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(std::string("--dynamic-mode: ") + e.what());
+    }
+  }
+  const std::string policy = args.value("frame-policy");
+  if (policy != "every" && policy != "latest")
+    throw ConfigError("--frame-policy: must be every or latest, got '" + policy + "'");
+  s.detections.reproducible = policy == "every";
+}
+
+}  // namespace
+
+TrackerSettings trackerSettingsFromConfig(const Config& config, const ArgParser* args) {
+  TrackerSettings s;
+  s.tracker = trackerConfigFromConfig(config.section("tracker"));
+  const Config process = config.section("process");
+  s.frames_channel = process.get<std::string>("frames_channel", s.frames_channel);
+  s.pose_channel = process.get<std::string>("pose_channel", s.pose_channel);
+  s.keyframe_channel = process.get<std::string>("keyframe_channel", s.keyframe_channel);
+  s.keyframe_poses_channel = process.get<std::string>("keyframe_poses_channel", s.keyframe_poses_channel);
+  const int capacity = process.get<int>("frame_queue_capacity", static_cast<int>(s.frame_queue_capacity));
+  process.check(capacity >= 1, "frame_queue_capacity", "must be at least 1");
+  s.frame_queue_capacity = static_cast<std::size_t>(capacity);
+  s.detections_channel = process.get<std::string>("detections_channel", s.detections_channel);
+  DetectionPolicy& d = s.detections;
+  d.wait_ms = process.get<double>("detections_wait_ms", d.wait_ms);
+  process.check(d.wait_ms >= 0, "detections_wait_ms", "must not be negative");
+  d.keyframe_hold_ms = process.get<double>("keyframe_hold_ms", d.keyframe_hold_ms);
+  process.check(d.keyframe_hold_ms >= 0, "keyframe_hold_ms", "must not be negative");
+  if (args) applyOptions(*args, s);
+  return s;
+}
+
+}  // namespace bmp::tracker

@@ -1,0 +1,133 @@
+#include "bench_run.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+#include <thread>
+
+#include "bmp/common/config.hpp"
+#include "bmp/common/config_dir.hpp"
+#include "capture/camera_selection.hpp"
+#include "eval/ate.hpp"
+#include "tracker/tracker_settings.hpp"
+#include "tracker_offline/offline_runner.hpp"
+
+namespace bmp::tracker {
+
+namespace {
+
+// --config's `tracker` section (built-in defaults when --config is empty); --inline-mapping on top.
+TrackerConfig loadConfig(const bmp::ArgParser& args) {
+  TrackerConfig config;
+  if (!args.value("config").empty()) {
+    const bmp::Config file = bmp::Config::fromFile(args.value("config"));
+    // Read as bmp-tracker reads it, so the file that runs the process runs the benchmark; the `process`
+    // section (channels, queue) is checked and then unused here, as the benchmark has no LCM side.
+    config = trackerSettingsFromConfig(file).tracker;
+    file.finish();
+  }
+  if (args.flag("inline-mapping")) config.mapping.threaded = false;
+  return config;
+}
+
+// Progress every 100th frame (every frame with --verbose), then the --frame-gap-ms pause.
+OfflineOptions offlineOptions(const bmp::ArgParser& args) {
+  OfflineOptions options;
+  options.max_frames = args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
+  const bool verbose = args.flag("verbose");
+  // A pause after each frame, as between frames of the pipeline: local mapping then has time to finish
+  // (the pipeline's lockstep leaves it idle when the next frame arrives), which changes its timing.
+  const auto gap = std::chrono::milliseconds(args.integer("frame-gap-ms"));
+  options.on_result = [verbose, gap](const TrackResult& r) {
+    if (gap.count() > 0) std::this_thread::sleep_for(gap);
+    if (verbose || r.seq % 100 == 0)
+      std::fprintf(stderr, "frame %5lld %-12s kp %4d excluded %4d tracked %4d map %6d kfs %4d  %.1f ms\n",
+                   static_cast<long long>(r.seq), toString(r.state), r.num_keypoints, r.num_excluded,
+                   r.num_tracked, r.num_map_points, r.num_keyframes, r.processing_ms);
+  };
+  return options;
+}
+
+void printRunSummary(const OfflineResult& result) {
+  std::printf("frames           %d\n", result.frames);
+  std::printf("frames tracked   %zu\n", result.trajectory.size());
+  std::printf("frames lost      %d%s\n", result.frames_lost, result.lost_at_end ? " (lost at the end)" : "");
+  std::printf("keyframes        %zu\n", result.keyframe_trajectory.size());
+  std::printf("track ms median  %.2f\n", result.track_ms.median());
+  std::printf("track ms p95     %.2f\n", result.track_ms.p95());
+  std::printf("track ms mean    %.2f\n", result.track_ms.mean());
+  bmp::TimingStats extract, wait;
+  for (const auto& r : result.results) {
+    extract.add(r.extract_ms);
+    wait.add(r.lock_wait_ms);
+  }
+  std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", wait.median(), wait.p95());
+  std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", extract.median());
+}
+
+// Each associated frame's position error after the global alignment: where the trajectory went wrong.
+void writeErrors(const std::string& path, const bmp::eval::AteResult& ate) {
+  FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) throw std::runtime_error("cannot write " + path);
+  for (const auto& pair : ate.pairs) std::fprintf(out, "%.6f %.4f\n", pair.est_stamp, pair.error);
+  std::fclose(out);
+}
+
+void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
+              const bmp::Trajectory& groundtruth) {
+  if (groundtruth.empty() || estimate.size() < 3) {
+    std::printf("ATE              n/a (no ground truth or too few poses)\n");
+    return;
+  }
+  const bmp::eval::AteResult ate = bmp::eval::computeAte(groundtruth, estimate);
+  std::printf("ATE rmse m       %.4f\n", ate.stats.rmse);
+  std::printf("ATE mean m       %.4f\n", ate.stats.mean);
+  std::printf("ATE median m     %.4f\n", ate.stats.median);
+  std::printf("ATE max m        %.4f\n", ate.stats.max);
+  std::printf("ATE pairs        %zu\n", ate.pairs.size());
+  if (args.given("errors")) writeErrors(args.value("errors"), ate);
+}
+
+}  // namespace
+
+int runBenchTracker(const bmp::ArgParser& args) {
+  // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
+  const bmp::capture::SequenceCamera selected =
+      bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
+  std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
+  Tracker tracker(selected.intrinsics, loadConfig(args));
+  bmp::Trajectory groundtruth;
+  const OfflineResult result =
+      runOffline(tracker,
+                 tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth,
+                                 args.flag("oracle-masks")),
+                 offlineOptions(args));
+  if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
+  if (args.given("keyframe-trajectory"))
+    bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
+  printRunSummary(result);
+  printAte(args, result.trajectory, groundtruth);
+  return 0;
+}
+
+void addBenchTrackerOptions(ArgParser& args) {
+  args.addOption("dataset", "DIR", "TUM-format folder (rgb.txt, depth.txt, optional groundtruth.txt)");
+  args.addOption("camera", "FILE",
+                 "camera YAML (key 'camera'); default: DIR/camera.yaml, else chosen by the folder's name");
+  args.addOption("config", "FILE", "tracker YAML (key 'tracker'); empty: built-in defaults",
+                 bmp::configDir() + "/tracker.yaml");
+  args.addOption("frames", "N", "track at most N frames");
+  args.addOption("start", "N", "skip the first N associated frames", "0");
+  args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
+  args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
+  args.addOption("errors", "FILE",
+                 "write each associated frame's position error after alignment (stamp metres)");
+  args.addOption("frame-gap-ms", "N", "sleep N ms after each frame (idle time, as between pipeline frames)",
+                 "0");
+  args.addFlag("inline-mapping", "run local mapping inline instead of in its thread (deterministic)");
+  args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
+  args.addFlag("verbose", "print every frame's state, not every 100th");
+}
+
+}  // namespace bmp::tracker
