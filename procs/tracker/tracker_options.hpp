@@ -118,7 +118,7 @@ struct DynamicOptions {
   double refine_band_ratio = 0.15;
   // Geometric observation: a matched point whose residual under the estimated pose exceeds
   // geo_chi2_factor times the pose's chi-square threshold is observed moving (z = d), else static.
-  double geo_chi2_factor = 2.0;
+  double geo_chi2_factor = 8.0;
   double geo_lambda = 0.7;  // P(large residual | dynamic)
   double geo_omega = 0.95;  // P(small residual | static)
   // An unmatched keypoint takes its prior from matched neighbours this close (pixels, and metres in
