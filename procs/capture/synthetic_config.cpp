@@ -14,6 +14,24 @@ std::array<double, 3> triple(const Config& c, const std::string& key, const std:
   return {v[0], v[1], v[2]};
 }
 
+// people: a mapping of named entries {image, rect: [x, y, w, h], height_m}, in file order.
+std::vector<PersonSource> people(const Config& list) {
+  std::vector<PersonSource> out;
+  for (const std::string& name : list.keys()) {
+    const Config entry = list.section(name);
+    PersonSource p;
+    p.image = entry.require<std::string>("image");
+    const auto rect = entry.require<std::vector<int>>("rect");
+    entry.check(rect.size() == 4 && rect[2] > 0 && rect[3] > 0, "rect",
+                "must be [x, y, width, height] with a positive size");
+    p.rect = {rect[0], rect[1], rect[2], rect[3]};
+    p.height_m = entry.get("height_m", p.height_m);
+    entry.check(p.height_m > 0.5 && p.height_m <= 2.5, "height_m", "must be in (0.5, 2.5] m");
+    out.push_back(p);
+  }
+  return out;
+}
+
 }  // namespace
 
 SyntheticSceneConfig syntheticSceneFromConfig(const Config& s) {
@@ -44,9 +62,16 @@ SyntheticSceneConfig syntheticSceneFromConfig(const Config& s) {
   c.rotation_amplitude_deg = triple(s, "rotation_amplitude_deg", c.rotation_amplitude_deg);
   c.rotation_period = triple(s, "rotation_period", c.rotation_period);
 
+  const std::string scenario = s.get<std::string>("scenario", toString(c.scenario));
+  try {
+    c.scenario = parseScenario(scenario);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(s.origin() + ": key '" + s.path("scenario") + "': " + e.what());
+  }
   c.num_moving_objects = s.get("num_moving_objects", c.num_moving_objects);
   c.object_size = triple(s, "object_size", c.object_size);
   c.walk_speed = s.get("walk_speed", c.walk_speed);
+  if (s.has("people")) c.people = people(s.section("people"));
 
   c.max_depth = s.get("max_depth", c.max_depth);
   c.depth_noise = s.get("depth_noise", c.depth_noise);

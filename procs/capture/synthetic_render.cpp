@@ -19,8 +19,10 @@ struct Candidate {
   Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
   Eigen::Vector3d o = Eigen::Vector3d::Zero();
   bool own_frame = false;  // false: the world frame, so the pixel's world ray is reused
-  int texture = 0;         // first of its 6 textures
+  int texture = 0;         // first of its 6 textures (a billboard has one)
   bool dynamic = false;
+  uint8_t id = 0;                                        // mover id, 0 for the static scene
+  const synth::PersonCutout* cutout = nullptr;           // a billboard: drawn only where the person is
   int u0 = 0, u1 = -1, v0 = 0, v1 = -1;                  // inclusive pixel bounds of its projection
   float lo_o[3] = {0, 0, 0}, hi_o[3] = {0, 0, 0};        // box corners minus o
   float row_dir[3] = {0, 0, 0}, col_dir[3] = {0, 0, 0};  // M * (0, yn, 1) for this row; M's first column
@@ -120,15 +122,19 @@ class FrameRenderer {
     toFloat(R_.col(0), r_col0_);
   }
 
-  // A box with its first texture; dynamic boxes move, so their rays are cast in their own frame.
-  void addBox(const AlignedBox& box, const SE3& T_world_box, int texture, bool dynamic) {
+  // A box with its first texture; movers (id > 0) move, so their rays are cast in their own frame. With a
+  // cutout, the box is a flat billboard x = 0 showing that person.
+  void addBox(const AlignedBox& box, const SE3& T_world_box, int texture, int id,
+              const synth::PersonCutout* cutout = nullptr) {
     Candidate c;
     c.box = box;
     c.M = T_world_box.linear().transpose() * R_;
     c.o = T_world_box.inverse() * origin_;
-    c.own_frame = dynamic;
+    c.own_frame = id > 0;
     c.texture = texture;
-    c.dynamic = dynamic;
+    c.dynamic = id > 0;
+    c.id = static_cast<uint8_t>(id);
+    c.cutout = cutout;
     toFloat(box.lo - c.o, c.lo_o);
     toFloat(box.hi - c.o, c.hi_o);
     toFloat(c.M.col(0), c.col_dir);
@@ -142,6 +148,7 @@ class FrameRenderer {
     selectRow(v, yn);
     auto* depth = frame.depth.ptr<uint16_t>(v);
     auto* mask = frame.mask.ptr<uint8_t>(v);
+    auto* ids = frame.mover_ids.ptr<uint8_t>(v);
     const float* noise_row = n_.color || n_.depth ? noise_.ptr<float>(v + n_.off[0]) : nullptr;
     for (int u = 0; u < k_.width; ++u) {
       const float xn = static_cast<float>((u - k_.cx) / k_.fx);
@@ -151,7 +158,7 @@ class FrameRenderer {
       float z = hit.t;
       if (n_.depth) z += n_.depth_sigma * z * z * noise_row[3 * u + n_.off[4]];
       depth[u] = z > 0 && z <= max_depth_ ? cv::saturate_cast<uint16_t>(z * depth_scale_) : 0;
-      if (hit.box && hit.box->dynamic) mask[u] = 255;
+      if (hit.box && hit.box->dynamic) mask[u] = 255, ids[u] = hit.box->id;
     }
     colourRow(frame.bgr.ptr<uint8_t>(v), noise_row);
   }
@@ -185,12 +192,24 @@ class FrameRenderer {
         for (int i = 0; i < 3; ++i) dl[i] = c->row_dir[i] + xn * c->col_dir[i], invl[i] = 1.0f / dl[i];
       float tc = 0.0f;
       int fc = 0;
-      if (enterBox(c->lo_o, c->hi_o, invl, hit.t, tc, fc)) {
+      if (enterBox(c->lo_o, c->hi_o, invl, hit.t, tc, fc) && (!c->cutout || onPerson(*c, tc, dl))) {
         hit.t = tc, hit.face = fc, hit.box = c;
         for (int i = 0; i < 3; ++i) hit.dir[i] = dl[i];
       }
     }
     return hit;
+  }
+
+  // Whether a billboard's hit at distance t along d falls on the person's silhouette (nearest texel): the
+  // rest of the photo is not drawn, so the ray goes on to whatever lies behind.
+  static bool onPerson(const Candidate& c, float t, const float d[3]) {
+    const synth::PersonCutout& p = *c.cutout;
+    const float tpm = static_cast<float>(p.texels_per_metre);
+    const float x = (t * d[1] - c.lo_o[1]) * tpm, y = (t * d[2] - c.lo_o[2]) * tpm;
+    if (!(x >= 0.0f && y >= 0.0f && x < static_cast<float>(p.alpha.cols) &&
+          y < static_cast<float>(p.alpha.rows)))
+      return false;
+    return p.alpha.ptr<uint8_t>(static_cast<int>(y))[static_cast<int>(x)] != 0;
   }
 
   synth::TexelLookup locateTexel(const PixelHit& hit) const {
@@ -199,8 +218,8 @@ class FrameRenderer {
     synth::faceAxes(hit.face, a, b);
     // Footprint of the pixel on the surface: t / (f * sqrt(|d . n|)) for the unnormalised direction d.
     const float footprint = hit.t / (focal_ * std::sqrt(std::max(std::abs(hit.dir[hit.face / 2]), 1e-4f)));
-    return textures_[(hit.box ? hit.box->texture : 0) + hit.face].locate(
-        hit.t * hit.dir[a] - lo_o[a], hit.t * hit.dir[b] - lo_o[b], footprint);
+    const int texture = hit.box ? hit.box->texture + (hit.box->cutout ? 0 : hit.face) : hit.face;
+    return textures_[texture].locate(hit.t * hit.dir[a] - lo_o[a], hit.t * hit.dir[b] - lo_o[b], footprint);
   }
 
   // Second pass: colour, once the row's texels are on their way into the cache.
@@ -242,16 +261,22 @@ SyntheticFrame SyntheticScene::render(int index) const {
   frame.bgr.create(k.height, k.width, CV_8UC3);
   frame.depth.create(k.height, k.width, CV_16UC1);
   frame.mask = cv::Mat::zeros(k.height, k.width, CV_8UC1);
+  frame.mover_ids = cv::Mat::zeros(k.height, k.width, CV_8UC1);
 
   FrameRenderer renderer(config_, in_->textures, in_->noise, frame.T_world_cam, room_,
                          frameNoise(config_, index, Internals::kNoiseMargin));
-  // Textures: 6 per box, the room's first, then the furniture's, then the walkers'.
+  // Textures: 6 per box, the room's first, then the furniture's, then the movers'.
   for (std::size_t i = 0; i < static_boxes_.size(); ++i)
-    renderer.addBox(static_boxes_[i], SE3::Identity(), 6 + 6 * static_cast<int>(i), false);
+    renderer.addBox(static_boxes_[i], SE3::Identity(), 6 + 6 * static_cast<int>(i), 0);
   const auto objects = movingObjects(index);
-  for (std::size_t i = 0; i < objects.size(); ++i)
-    renderer.addBox(objects[i].box, objects[i].T_world_object,
-                    6 * static_cast<int>(1 + static_boxes_.size() + i), true);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const MovingObjectState& o = objects[i];
+    const bool person = o.info.kind == MoverKind::kPerson;
+    const int look = person ? in_->cast.movers[i].look : -1;
+    renderer.addBox(o.box, o.T_world_object, in_->mover_texture[i], o.info.id,
+                    person ? &in_->cutouts[static_cast<std::size_t>(look)] : nullptr);
+    frame.movers.push_back(o.info);
+  }
   for (int v = 0; v < k.height; ++v) renderer.renderRow(v, frame);
   return frame;
 }

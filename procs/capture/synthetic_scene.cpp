@@ -31,6 +31,14 @@ void addBoxTextures(const AlignedBox& box, const SyntheticSceneConfig& c, uint64
   }
 }
 
+// A box mover in its own frame: x forward (depth), y left (width), z up.
+AlignedBox boxMoverBox(const SyntheticSceneConfig& c) {
+  AlignedBox b;
+  b.lo = {-c.object_size[1] / 2, -c.object_size[0] / 2, 0.0};
+  b.hi = {c.object_size[1] / 2, c.object_size[0] / 2, c.object_size[2]};
+  return b;
+}
+
 void validate(const SyntheticSceneConfig& c) {
   const auto fail = [](const std::string& what) { throw std::invalid_argument("synthetic scene: " + what); };
   if (c.camera.width <= 0 || c.camera.height <= 0 || c.camera.fx <= 0 || c.camera.fy <= 0 ||
@@ -41,6 +49,12 @@ void validate(const SyntheticSceneConfig& c) {
   if (c.texels_per_metre < 10 || c.texels_per_metre > 2000) fail("texels_per_metre must be in [10, 2000]");
   if (c.shapes_per_square_metre < 0) fail("shapes_per_square_metre must not be negative");
   if (c.num_moving_objects < 0) fail("num_moving_objects must not be negative");
+  if (c.scenario == SyntheticScenario::kPeopleWalking && c.num_moving_objects > 3)
+    fail("people_walking takes at most 3 people (num_moving_objects)");
+  if (c.scenario != SyntheticScenario::kBoxes && c.people.empty())
+    fail("scenario " + toString(c.scenario) + " needs at least one entry in 'people'");
+  for (const auto& p : c.people)
+    if (p.height_m <= 0.5 || p.height_m > 2.5) fail("a person's height must be in (0.5, 2.5] m");
   for (double s : c.object_size)
     if (s <= 0) fail("object_size must be positive");
   if (c.max_depth <= 0 || c.max_depth * c.camera.depth_scale > 65535)
@@ -64,15 +78,48 @@ SyntheticScene::SyntheticScene(const SyntheticSceneConfig& config)
   addBoxTextures(room_, config_, synth::mixSeed(seed, 10), in_->textures);
   for (std::size_t i = 0; i < static_boxes_.size(); ++i)
     addBoxTextures(static_boxes_[i], config_, synth::mixSeed(seed, 11, i), in_->textures);
-  in_->paths = synth::walkPaths(config_, room_);
-  for (int k = 0; k < config_.num_moving_objects; ++k)
-    addBoxTextures(synth::walkerAt(in_->paths[k], config_, 0.0).box, config_, synth::mixSeed(seed, 12, k),
-                   in_->textures);
+  if (config_.scenario == SyntheticScenario::kBoxes)
+    buildBoxWalkers();
+  else
+    buildCast();
   in_->motion = synth::cameraMotion(config_);
   if (config_.color_noise > 0 || config_.depth_noise > 0)
     in_->noise =
         synth::unitNoiseTile(config_.camera.height + Internals::kNoiseMargin,
                              3 * config_.camera.width + Internals::kNoiseMargin, synth::mixSeed(seed, 3));
+}
+
+// The boxes scenario's walkers, exactly as before scenarios existed, so its frames stay reproducible.
+void SyntheticScene::buildBoxWalkers() {
+  const auto seed = static_cast<uint64_t>(config_.seed);
+  in_->paths = synth::walkPaths(config_, room_);
+  for (int k = 0; k < config_.num_moving_objects; ++k) {
+    in_->mover_texture.push_back(static_cast<int>(in_->textures.size()));
+    addBoxTextures(synth::walkerAt(in_->paths[k], config_, 0.0).box, config_, synth::mixSeed(seed, 12, k),
+                   in_->textures);
+  }
+}
+
+// A scripted scenario: people cut out once per photo (mirrored copies for reuse), boxes textured as ever.
+void SyntheticScene::buildCast() {
+  const auto seed = static_cast<uint64_t>(config_.seed);
+  in_->cast = synth::scenarioCast(config_);
+  std::vector<std::unique_ptr<synth::PersonCutout>> cut(config_.people.size());
+  for (const auto& look : in_->cast.looks) {
+    auto& base = cut[static_cast<std::size_t>(look.person)];
+    if (!base) base = std::make_unique<synth::PersonCutout>(synth::cutOutPerson(config_.people[look.person]));
+    in_->cutouts.push_back(look.mirror ? synth::mirrored(*base) : *base);
+  }
+  for (std::size_t k = 0; k < in_->cast.movers.size(); ++k) {
+    const auto& m = in_->cast.movers[k];
+    in_->mover_texture.push_back(static_cast<int>(in_->textures.size()));
+    if (m.kind == MoverKind::kPerson) {
+      const auto& c = in_->cutouts[static_cast<std::size_t>(m.look)];
+      in_->textures.emplace_back(c.bgr, c.texels_per_metre);
+    } else {
+      addBoxTextures(boxMoverBox(config_), config_, synth::mixSeed(seed, 12, k), in_->textures);
+    }
+  }
 }
 
 SyntheticScene::~SyntheticScene() = default;
@@ -95,8 +142,33 @@ Trajectory SyntheticScene::groundTruth() const {
 }
 
 std::vector<MovingObjectState> SyntheticScene::movingObjects(int index) const {
+  const double t = index / config_.fps;
   std::vector<MovingObjectState> out;
-  for (const auto& path : in_->paths) out.push_back(synth::walkerAt(path, config_, index / config_.fps));
+  for (const auto& path : in_->paths) {
+    out.push_back(synth::walkerAt(path, config_, t));
+    out.back().info.id = static_cast<int>(out.size());
+  }
+  if (in_->cast.movers.empty()) return out;
+  const Eigen::Vector3d eye = cameraPose(index).translation();
+  for (const auto& m : in_->cast.movers) {
+    const synth::ScriptState st = synth::scriptAt(m, t);
+    MovingObjectState s;
+    s.position = st.p;
+    s.info = {static_cast<int>(out.size()) + 1, m.kind, st.moving};
+    if (m.kind == MoverKind::kPerson) {
+      // A billboard turned about z to face the camera, so the photo is always seen from the front.
+      const auto& c = in_->cutouts[static_cast<std::size_t>(m.look)];
+      s.yaw = std::atan2(eye.y() - st.p.y(), eye.x() - st.p.x());
+      s.box.lo = {0.0, -c.width_m / 2, 0.0};
+      s.box.hi = {0.0, c.width_m / 2, c.height_m};
+    } else {
+      s.yaw = st.heading;
+      s.box = boxMoverBox(config_);
+    }
+    s.T_world_object.linear() = Eigen::AngleAxisd(s.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    s.T_world_object.translation() = Eigen::Vector3d(st.p.x(), st.p.y(), 0.0);
+    out.push_back(s);
+  }
   return out;
 }
 

@@ -25,8 +25,8 @@ std::optional<CapturedFrame> SyntheticSource::next() {
 
 std::string SyntheticSource::name() const {
   const auto& c = scene_->config();
-  return "synthetic(seed " + std::to_string(c.seed) + ", " + std::to_string(c.num_moving_objects) +
-         " moving objects)";
+  return "synthetic(" + toString(c.scenario) + ", seed " + std::to_string(c.seed) + ", " +
+         std::to_string(scene_->movingObjects(0).size()) + " moving objects)";
 }
 
 }  // namespace bmp::capture

@@ -1,18 +1,15 @@
 #include "detector/shared_paths.hpp"
 
-#include <cstdlib>
-#include <filesystem>
+#include "bmp/common/shared_paths.hpp"
 
 namespace bmp::detector {
 
 std::string sharedDir() {
-  if (const char* env = std::getenv("BMP_SHARED"); env != nullptr && *env != '\0') return env;
-  return BMP_DETECTOR_SHARED_DEFAULT;
+  return bmp::sharedDir();
 }
 
 std::string resolveSharedPath(const std::string& path) {
-  if (path.empty() || std::filesystem::path(path).is_absolute()) return path;
-  return (std::filesystem::path(sharedDir()) / path).lexically_normal().string();
+  return bmp::resolveSharedPath(path);
 }
 
 }  // namespace bmp::detector

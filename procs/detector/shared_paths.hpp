@@ -1,5 +1,6 @@
 #pragma once
-// Models and data live in the shared folder beside the checkout, never in the repository.
+// The detector's name for the shared-folder helpers, which live in bmp_common (bmp/common/shared_paths.hpp)
+// so that capture resolves its images the same way.
 #include <string>
 
 namespace bmp::detector {

@@ -55,8 +55,15 @@ TEST(SyntheticConfig, ShippedFileIsCompleteAndMatchesTheDefaults) {
   EXPECT_EQ(c.base_pitch_deg, d.base_pitch_deg);
   EXPECT_EQ(c.rotation_amplitude_deg, d.rotation_amplitude_deg);
   EXPECT_EQ(c.rotation_period, d.rotation_period);
+  EXPECT_EQ(c.scenario, d.scenario);
   EXPECT_EQ(c.num_moving_objects, d.num_moving_objects);
   EXPECT_EQ(c.object_size, d.object_size);
+  ASSERT_EQ(c.people.size(), d.people.size());
+  for (std::size_t i = 0; i < c.people.size(); ++i) {
+    EXPECT_EQ(c.people[i].image, d.people[i].image);
+    EXPECT_EQ(c.people[i].rect, d.people[i].rect);
+    EXPECT_EQ(c.people[i].height_m, d.people[i].height_m);
+  }
   EXPECT_EQ(c.walk_speed, d.walk_speed);
   EXPECT_EQ(c.max_depth, d.max_depth);
   EXPECT_EQ(c.depth_noise, d.depth_noise);
@@ -74,6 +81,25 @@ TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
   EXPECT_EQ(c.camera.fy, 525.0);
   const Config short_list = Config::fromString("synthetic: {room_size: [7, 6]}", "test");
   EXPECT_THROW(syntheticSceneFromConfig(short_list.section("synthetic")), ConfigError);
+  const Config people = Config::fromString(
+      "synthetic: {scenario: crowd, people: {a: {image: /x.png, rect: [1, 2, 30, 60]}}}", "test");
+  const SyntheticSceneConfig crowd = syntheticSceneFromConfig(people.section("synthetic"));
+  EXPECT_EQ(crowd.scenario, SyntheticScenario::kCrowd);
+  ASSERT_EQ(crowd.people.size(), 1u);
+  EXPECT_EQ(crowd.people[0].image, "/x.png");
+  EXPECT_EQ(crowd.people[0].rect, (std::array<int, 4>{1, 2, 30, 60}));
+  EXPECT_EQ(crowd.people[0].height_m, 1.7);
+  for (const char* bad :
+       {"synthetic: {scenario: parade}", "synthetic: {people: {a: {image: x.png, rect: [1, 2]}}}",
+        "synthetic: {people: {a: {rect: [1, 2, 3, 4]}}}",
+        "synthetic: {people: {a: {image: x.png, rect: [1, 2, 30, 60], height_m: 9}}}"}) {
+    const Config c = Config::fromString(bad, "test");
+    EXPECT_THROW(syntheticSceneFromConfig(c.section("synthetic")), ConfigError) << bad;
+  }
+  SyntheticSceneConfig missing;
+  missing.scenario = SyntheticScenario::kPersonStops;
+  missing.people = {{"images/no_such_photo.jpg", {0, 0, 40, 80}, 1.7}};
+  EXPECT_THROW(SyntheticScene{missing}, std::runtime_error);
   SyntheticSceneConfig tiny;
   tiny.room_size = {2, 2, 2};
   EXPECT_THROW(SyntheticScene{tiny}, std::invalid_argument);
