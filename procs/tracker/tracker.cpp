@@ -82,6 +82,9 @@ TrackResult Tracker::track(const TrackerInput& input) {
     result.num_keyframes = static_cast<int>(map_.numKeyFrames());
     result.reference_keyframe_id = reference_kf_ ? reference_kf_->id : -1;
     result.num_dynamic = frame.numDynamic();
+    result.keypoint_dynamic = frame.dynamic;
+    result.keypoints.reserve(frame.features->keys.size());
+    for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
     if (result.new_keyframe)
       result.dynamic_mask =
           dynamic_.mask(*frame.features, frame.dynamic, input.boxes ? &*input.boxes : nullptr, input.depth,

@@ -50,6 +50,10 @@ struct TrackResult {
   std::optional<KeyFramePose> new_keyframe;    // made from this frame
   std::vector<KeyFramePose> keyframe_updates;  // poses moved by local BA since the previous frame
   cv::Mat dynamic_mask;                        // with new_keyframe: CV_8UC1, 255 on movers (for the mapper)
+  // Every keypoint (distorted pixels) and whether the dynamic stage kept it out of the pose: to score the
+  // stage against ground-truth masks (precision, recall).
+  std::vector<cv::Point2f> keypoints;
+  std::vector<uint8_t> keypoint_dynamic;
   double extract_ms = 0.0;                     // ORB extraction
   double lock_wait_ms = 0.0;                   // waiting for local mapping to let go of the map
   double processing_ms = 0.0;                  // the whole call

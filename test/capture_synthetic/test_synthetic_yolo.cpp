@@ -51,8 +51,8 @@ void score(detector::Detector& d, const SyntheticScene& scene, int step, Rates& 
 class SyntheticYolo : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
-    if (!std::filesystem::exists(test::sharedPath("images/bus.jpg")))
-      GTEST_SKIP() << "no shared images in " << test::sharedDir();
+    ASSERT_TRUE(std::filesystem::exists(test::sharedPath("images/bus.jpg")))
+        << "no shared images in " << test::sharedDir() << " (set BMP_SHARED)";
     detector_ = std::make_unique<detector::Detector>(
         detector::withModelPreset(detector::DetectorConfig{}, GetParam()),
         Config::fromFile(test::sourceDir() + "/config/dynamic_classes.yaml"));
