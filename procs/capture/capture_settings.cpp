@@ -93,6 +93,10 @@ void addCaptureOptions(ArgParser& args) {
                  "before the next (default: capture.ack_channels)");
   args.addOption("groundtruth-out", "FILE", "write the ground truth of the played sequence (TUM format)");
   args.addOption("masks-out", "DIR", "synthetic scene: write the dynamic-object masks as PNG");
+  args.addOption("loop", "N",
+                 "play the source N times as one stream: stamps offset by the sequence's duration each pass, "
+                 "seq continuing (long runs)",
+                 "1");
   args.addOption("wait-for", "NAMES",
                  "comma-separated process names whose heartbeat must be seen before "
                  "the first frame (e.g. bmp-tracker,bmp-detector)");
@@ -127,6 +131,9 @@ CaptureSettings readCaptureSettings(const Config& section, const ArgParser& args
   readSelection(args, check, s.selection);
   s.groundtruth_out = args.value("groundtruth-out");
   s.wait_for = args.list("wait-for");
+  const long long loops = args.integer("loop");
+  check(loops >= 1 && loops <= 1000000, "", "loop", "must be between 1 and 1000000");
+  s.loops = static_cast<int>(loops);
   return s;
 }
 

@@ -40,6 +40,7 @@ struct CaptureSettings {
   FrameSelection selection;           // --start, --end, --every
   std::string groundtruth_out;        // "" = not written
   std::vector<std::string> wait_for;  // process names; a name given twice waits for two such processes
+  int loops = 1;                      // --loop: plays the source this many times as one stream (soak runs)
 };
 
 // bmp-capture's own options and --help epilog.

@@ -59,6 +59,8 @@ TrackerSettings trackerSettingsFromConfig(const Config& config, const ArgParser*
   process.check(d.wait_ms >= 0, "detections_wait_ms", "must not be negative");
   d.keyframe_hold_ms = process.get<double>("keyframe_hold_ms", d.keyframe_hold_ms);
   process.check(d.keyframe_hold_ms >= 0, "keyframe_hold_ms", "must not be negative");
+  d.degraded_inliers = process.get<int>("degraded_inliers", d.degraded_inliers);
+  process.check(d.degraded_inliers >= 0, "degraded_inliers", "must not be negative");
   if (args) applyOptions(*args, s);
   return s;
 }

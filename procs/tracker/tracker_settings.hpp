@@ -20,6 +20,9 @@ struct DetectionPolicy {
   // Real time: a keyframe whose frame's answer has not come is held this long for it, so the mapper gets
   // the mask with the boxes; its map points take the late observation either way.
   double keyframe_hold_ms = 500.0;
+  // An OK pose supported by fewer inliers than this is published as DEGRADED (0: never). Not about
+  // detections: it rides here because this is the process section's part the node is given.
+  int degraded_inliers = 50;
 };
 
 struct TrackerSettings {

@@ -27,6 +27,7 @@ RunSettings runSettingsFromConfig(const Config& c) {
   s.evaluate = c.get<bool>("evaluate", s.evaluate);
   s.pose_channel = c.get<std::string>("pose_channel", s.pose_channel);
   s.detections_channel = c.get<std::string>("detections_channel", s.detections_channel);
+  s.status_channel = c.get<std::string>("status_channel", s.status_channel);
   const Config processes = c.section("processes");
   for (const auto& name : processes.keys())
     s.processes.push_back({name, processes.get<std::vector<std::string>>(name, {})});
@@ -56,6 +57,7 @@ LaunchPlan makePlan(const RunSettings& settings, const RunRequest& request) {
   if (!request.camera.empty()) cap.argv.insert(cap.argv.end(), {"--camera", request.camera});
   if (!request.speed.empty()) cap.argv.insert(cap.argv.end(), {"--speed", request.speed});
   if (request.frames >= 0) cap.argv.insert(cap.argv.end(), {"--end", std::to_string(request.frames)});
+  if (!request.loops.empty()) cap.argv.insert(cap.argv.end(), {"--loop", request.loops});
   // One entry per process started: capture counts distinct processes, so a name listed twice waits for two.
   if (!names.empty()) cap.argv.insert(cap.argv.end(), {"--wait-for", names});
   for (const auto& a : settings.capture_args) cap.argv.push_back(expand(a, request, mode));

@@ -20,6 +20,7 @@ struct RunRequest {
   std::string mode;       // capture mode; "" = run.yaml's
   std::string speed;      // "" = default
   long long frames = -1;  // -1 = the whole sequence
+  std::string loops;      // "" = once
   std::string lcm_url;
   std::string out_dir;  // the run's folder
   std::string bin_dir;  // where the executables are
@@ -33,6 +34,7 @@ struct RunSettings {
   bool evaluate = true;
   std::string pose_channel = channels::kPose;              // heard for the run summary
   std::string detections_channel = channels::kDetections;  // likewise
+  std::string status_channel = channels::kProcessStatus;   // likewise: each process's frame counts
   std::vector<ProcessCommand> processes;                   // args from config, before placeholder expansion
   std::vector<std::string> capture_args;
 };

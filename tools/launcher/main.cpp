@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   args.addOption("mode", "MODE", "capture mode: lockstep | realtime | fast (default: run.mode)");
   args.addOption("speed", "X", "realtime mode: recorded rate x X");
   args.addOption("frames", "N", "play only the first N frames");
+  args.addOption("loop", "N", "play the sequence N times as one stream (bmp-capture --loop; soak runs)");
   args.addOption("lcm-url", "URL", "LCM URL for every process; else $LCM_DEFAULT_URL, else the default");
   args.addFlag("no-eval", "do not evaluate");
   args.addEpilog(

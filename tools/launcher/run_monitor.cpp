@@ -4,8 +4,10 @@
 #include <sstream>
 
 #include <bmp/detections_t.hpp>
+#include <bmp/process_status_t.hpp>
 #include <bmp/slam_pose_t.hpp>
 
+#include "bmp/common/json_text.hpp"
 #include "bmp/common/number_format.hpp"
 
 namespace bmp::launcher {
@@ -26,6 +28,43 @@ std::string textTiming(const TimingStats& t) {
   return "median " + number(t.median(), 1) + " ms, p95 " + number(t.p95(), 1) + " ms";
 }
 
+// "bmp-tracker", or "bmp-tracker (2)" for the second start of that name: names repeat, instances do not.
+std::vector<std::pair<std::string, const ProcessFigures*>> labelled(const RunSummary& s) {
+  std::vector<std::pair<std::string, const ProcessFigures*>> out;
+  std::map<std::string, int> seen;
+  for (const auto& [key, p] : s.processes) {
+    const int n = ++seen[p.name];
+    out.emplace_back(n == 1 ? p.name : p.name + " (" + std::to_string(n) + ")", &p);
+  }
+  return out;
+}
+
+std::string textProcess(const std::string& label, const ProcessFigures& p) {
+  std::ostringstream out;
+  out << "  " << label << ": ";
+  if (p.name == "bmp-capture") {
+    out << p.processed << " frames published, " << p.dropped << " source frames skipped (bad files), "
+        << p.malformed << " malformed or stray answers ignored";
+  } else {
+    out << p.received << " received, " << p.processed << " processed, " << p.dropped
+        << " dropped (own queue), " << p.lost << " lost (never arrived), " << p.malformed
+        << " malformed or refused";
+  }
+  out << (p.state == process_status_t::STATE_FINISHED ? "" : " (no final heartbeat)") << "\n";
+  // The mapper's heartbeat message carries its own figures (keyframes, points, memory).
+  if (p.name == "bmp-mapper" && !p.message.empty()) out << "  mapper:    " << p.message << "\n";
+  return out.str();
+}
+
+std::string jsonProcess(const ProcessFigures& p) {
+  std::ostringstream out;
+  out << "{\"name\": " << jsonString(p.name) << ", \"finished\": "
+      << (p.state == process_status_t::STATE_FINISHED ? "true" : "false") << ", \"received\": " << p.received
+      << ", \"processed\": " << p.processed << ", \"dropped\": " << p.dropped << ", \"lost\": " << p.lost
+      << ", \"malformed\": " << p.malformed << ", \"message\": " << jsonString(p.message) << "}";
+  return out.str();
+}
+
 }  // namespace
 
 double RunSummary::answered_per_second() const {
@@ -36,56 +75,71 @@ std::string formatSummaryText(const RunSummary& s) {
   std::ostringstream out;
   out << "run summary (from the processes' own messages)\n";
   out << "  tracker:   " << s.poses << " frames answered: " << s.ok << " ok, " << s.relocalised
-      << " relocalised, " << s.lost << " lost, " << s.initialising << " initialising, " << s.skipped
-      << " skipped; tracking " << textTiming(s.tracking_ms) << "\n";
+      << " relocalised, " << s.degraded << " degraded, " << s.lost << " lost, " << s.initialising
+      << " initialising, " << s.skipped << " skipped; tracking " << textTiming(s.tracking_ms) << "\n";
   out << "  detector:  " << s.detections << " frames answered, " << s.detections_skipped << " skipped; "
       << textTiming(s.detector_ms) << "\n";
   out << "  end to end: " << number(s.answered_per_second(), 1)
       << " frames/s (pose to pose: " << textTiming(s.frame_period_ms) << ")\n";
+  if (!s.processes.empty()) out << "frames per process (from each one's last heartbeat)\n";
+  for (const auto& [label, p] : labelled(s)) out << textProcess(label, *p);
   return out.str();
 }
 
 std::string formatSummaryJson(const RunSummary& s) {
   std::ostringstream out;
   out << "{\n  \"tracker\": {\"frames\": " << s.poses << ", \"ok\": " << s.ok
-      << ", \"relocalised\": " << s.relocalised << ", \"lost\": " << s.lost
+      << ", \"relocalised\": " << s.relocalised << ", \"degraded\": " << s.degraded << ", \"lost\": " << s.lost
       << ", \"initialising\": " << s.initialising << ", \"skipped\": " << s.skipped
       << ", \"tracking_ms\": " << jsonTiming(s.tracking_ms) << "},\n";
   out << "  \"detector\": {\"frames\": " << s.detections << ", \"skipped\": " << s.detections_skipped
       << ", \"per_frame_ms\": " << jsonTiming(s.detector_ms) << "},\n";
   out << "  \"end_to_end\": {\"frames_per_second\": " << number(s.answered_per_second(), 3)
-      << ", \"pose_period_ms\": " << jsonTiming(s.frame_period_ms) << "}\n}\n";
+      << ", \"pose_period_ms\": " << jsonTiming(s.frame_period_ms) << "},\n";
+  out << "  \"processes\": [";
+  bool first = true;
+  for (const auto& [key, p] : s.processes) {
+    out << (first ? "\n    " : ",\n    ") << jsonProcess(p);
+    first = false;
+  }
+  out << (first ? "]\n}\n" : "\n  ]\n}\n");
   return out.str();
 }
 
+void RunMonitor::onPose(int8_t state, float processing_ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  RunSummary& s = summary_;
+  ++s.poses;
+  switch (state) {
+    case slam_pose_t::STATE_OK:
+      ++s.ok;
+      break;
+    case slam_pose_t::STATE_DEGRADED:
+      ++s.degraded;
+      break;
+    case slam_pose_t::STATE_LOST:
+      ++s.lost;
+      break;
+    case slam_pose_t::STATE_RELOCALISED:
+      ++s.relocalised;
+      break;
+    case slam_pose_t::STATE_INITIALISING:
+      ++s.initialising;
+      break;
+    default:
+      ++s.skipped;
+      break;
+  }
+  if (state != slam_pose_t::STATE_SKIPPED) s.tracking_ms.add(processing_ms);
+  if (s.poses > 1) s.frame_period_ms.add(since_last_pose_.elapsedMs());
+  since_last_pose_.restart();
+}
+
 RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
-                       const std::string& detections_channel)
+                       const std::string& detections_channel, const std::string& status_channel)
     : lcm_(url) {
-  lcm_.subscribe<slam_pose_t>(pose_channel, [this](const slam_pose_t& m, const ReceivedInfo&) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    RunSummary& s = summary_;
-    ++s.poses;
-    switch (m.state) {
-      case slam_pose_t::STATE_OK:
-        ++s.ok;
-        break;
-      case slam_pose_t::STATE_LOST:
-        ++s.lost;
-        break;
-      case slam_pose_t::STATE_RELOCALISED:
-        ++s.relocalised;
-        break;
-      case slam_pose_t::STATE_INITIALISING:
-        ++s.initialising;
-        break;
-      default:
-        ++s.skipped;
-        break;
-    }
-    if (m.state != slam_pose_t::STATE_SKIPPED) s.tracking_ms.add(m.processing_ms);
-    if (s.poses > 1) s.frame_period_ms.add(since_last_pose_.elapsedMs());
-    since_last_pose_.restart();
-  });
+  lcm_.subscribe<slam_pose_t>(pose_channel,
+                              [this](const slam_pose_t& m, const ReceivedInfo&) { onPose(m.state, m.processing_ms); });
   lcm_.subscribe<detections_t>(detections_channel, [this](const detections_t& m, const ReceivedInfo&) {
     std::lock_guard<std::mutex> lock(mutex_);
     ++summary_.detections;
@@ -94,6 +148,15 @@ RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
       return;
     }
     summary_.detector_ms.add(m.inference_ms);
+  });
+  lcm_.subscribe<process_status_t>(status_channel, [this](const process_status_t& m, const ReceivedInfo&) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Anyone can publish heartbeats: a flood of invented names must not grow the summary without bound.
+    constexpr std::size_t kMaxProcesses = 64;
+    const std::pair<std::string, int64_t> key{m.name, m.instance};
+    if (summary_.processes.size() >= kMaxProcesses && summary_.processes.count(key) == 0) return;
+    ProcessFigures& p = summary_.processes[key];
+    p = {m.name, m.instance, m.state, m.received, m.processed, m.dropped, m.lost, m.malformed, m.message};
   });
   thread_ = std::thread([this] {
     while (!stop_.load()) lcm_.handle(50);

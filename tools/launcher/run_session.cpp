@@ -1,12 +1,16 @@
 #include "launcher/run_session.hpp"
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
+
+#include <bmp/process_status_t.hpp>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
@@ -32,7 +36,7 @@ struct Launched {
 // A run's processes and what watches them, set up in this order and torn down in reverse (children first).
 struct Session {
   Session(const RunSettings& settings, const RunRequest& request, fs::path logs_dir)
-      : monitor(request.lcm_url, settings.pose_channel, settings.detections_channel),
+      : monitor(request.lcm_url, settings.pose_channel, settings.detections_channel, settings.status_channel),
         logs(std::move(logs_dir)) {}
 
   StopSignal stop;
@@ -65,6 +69,7 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   request.mode = args.value("mode");
   request.speed = args.value("speed");
   request.frames = args.given("frames") ? args.integer("frames") : -1;
+  request.loops = args.value("loop");
   request.lcm_url = resolveLcmUrl(args.value("lcm-url"));
   request.bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   request.out_dir = args.given("out")
@@ -178,6 +183,19 @@ int evaluateRun(Session& s, const LaunchPlan& plan, const RunRequest& request, i
   return worst;
 }
 
+// The processes have exited; their last heartbeats (sent just before) may still be on the way to the
+// monitor's thread. Waits up to timeout_s for one final heartbeat per process started.
+RunSummary finalSummary(const Session& s, double timeout_s) {
+  const Stopwatch waited;
+  while (true) {
+    RunSummary summary = s.monitor.summary();
+    std::size_t finished = 0;
+    for (const auto& [key, p] : summary.processes) finished += p.state == process_status_t::STATE_FINISHED;
+    if (finished >= s.launched.size() + 1 || waited.elapsedMs() > timeout_s * 1000.0) return summary;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
 void writeSummaryFile(const std::string& path, const std::string& text) {
   try {
     writeFileAtomically(path, text);
@@ -204,7 +222,7 @@ int runSession(const ArgParser& args) {
   superviseCapture(session);
   int worst = stopOthers(session, settings);
 
-  const RunSummary summary = session.monitor.summary();
+  const RunSummary summary = finalSummary(session, 1.0);
   writeSummaryFile((fs::path(request.out_dir) / "summary.json").string(), formatSummaryJson(summary));
   if (settings.evaluate && !args.flag("no-eval")) worst = evaluateRun(session, plan, request, worst);
   std::cout << formatSummaryText(summary) << std::flush;  // last, where the eye lands

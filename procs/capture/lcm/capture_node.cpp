@@ -1,19 +1,61 @@
 #include "capture/lcm/capture_node.hpp"
 
+#include <algorithm>
 #include <optional>
 
 #include "bmp/common/log.hpp"
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/wait_for_processes.hpp"
+#include "capture/looped_source.hpp"
 #include "capture/open_source.hpp"
 #include "capture/tum_source.hpp"
 
 namespace bmp::capture {
 
+namespace {
+
+void warnLine(const std::string& m) {
+  log::warn(m);
+}
+
+// The period of one pass over a TUM folder's selected frames, known before any is read, so the looped
+// ground truth can be written before the first frame.
+double tumPeriod(const SequenceIndex& index, const FrameSelection& selection) {
+  const auto total = static_cast<int64_t>(index.frames.size());
+  const int64_t end = selection.end < 0 ? total : std::min(total, selection.end);
+  if (end <= selection.start) return 1.0;
+  const int64_t last = selection.start + (end - 1 - selection.start) / selection.every * selection.every;
+  const int64_t count = (last - selection.start) / selection.every + 1;
+  return loopPeriod(index.frames[static_cast<std::size_t>(selection.start)].rgb_stamp,
+                    index.frames[static_cast<std::size_t>(last)].rgb_stamp, count);
+}
+
+// The dataset's ground truth, repeated for every --loop pass with that pass's stamp offset.
+Trajectory loopedTruth(const Trajectory& truth, int loops, double period_s) {
+  Trajectory out;
+  out.reserve(truth.size() * static_cast<std::size_t>(loops));
+  for (int k = 0; k < loops; ++k)
+    for (const auto& p : truth) out.push_back({p.stamp + period_s * k, p.T_world_cam});
+  return out;
+}
+
+}  // namespace
+
 CaptureNode::CaptureNode(ProcessContext& ctx, CaptureSettings settings)
-    : ctx_(ctx),
-      settings_(std::move(settings)),
-      source_(openFrameSource(settings_, [](const std::string& m) { log::warn(m); })) {}
+    : ctx_(ctx), settings_(std::move(settings)), source_(openFrameSource(settings_, warnLine)) {
+  if (const auto* tum = dynamic_cast<const TumSource*>(source_.get())) {
+    from_dataset_ = true;
+    dataset_truth_ = tum->index().groundtruth;
+    loop_period_s_ = tumPeriod(tum->index(), settings_.selection);
+  }
+  if (settings_.loops > 1) {
+    source_ = std::make_unique<LoopedSource>(
+        std::move(source_), [this] { return openFrameSource(settings_, warnLine); }, settings_.loops,
+        loop_period_s_);
+    log::info("playing the source ", settings_.loops, " times as one stream",
+              loop_period_s_ > 0 ? ", stamps offset " + std::to_string(loop_period_s_) + " s per pass" : "");
+  }
+}
 
 int CaptureNode::run() {
   // Interrupted while waiting: the player sees the stop too and publishes nothing.
@@ -22,14 +64,14 @@ int CaptureNode::run() {
   FramePlayer player(ctx_.lcm, ctx_.stop, ctx_.status, settings_.player);
   const std::string& out = settings_.groundtruth_out;
   // A TUM folder's ground truth is the dataset's own (all of it, for evaluation against any subset).
-  const auto* tum = dynamic_cast<const TumSource*>(source_.get());
   std::optional<TumTrajectoryStream> truth;
-  if (!out.empty() && tum) {
-    if (tum->index().groundtruth.empty()) {
+  if (!out.empty() && from_dataset_) {
+    if (dataset_truth_.empty()) {
       log::warn("no ground truth for ", source_->name(), "; ", out, " not written");
     } else {
-      writeTumTrajectory(out, tum->index().groundtruth);
-      log::info("ground truth (", tum->index().groundtruth.size(), " poses) written to ", out);
+      const Trajectory t = loopedTruth(dataset_truth_, settings_.loops, loop_period_s_);
+      writeTumTrajectory(out, t);
+      log::info("ground truth (", t.size(), " poses) written to ", out);
     }
   } else if (!out.empty()) {
     truth.emplace(out, "true camera poses of the frames played, camera to world");

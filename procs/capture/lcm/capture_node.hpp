@@ -5,6 +5,8 @@
 // ground truth of every frame it published. The process's main only reads the settings and runs it.
 #include <memory>
 
+#include "bmp/common/tum_trajectory.hpp"
+
 #include "bmp/lcm/process.hpp"
 #include "capture/capture_settings.hpp"
 #include "capture/frame_source.hpp"
@@ -25,6 +27,9 @@ class CaptureNode {
   ProcessContext& ctx_;
   CaptureSettings settings_;
   std::unique_ptr<FrameSource> source_;
+  bool from_dataset_ = false;
+  Trajectory dataset_truth_;  // a TUM folder's ground truth, all of it
+  double loop_period_s_ = 0;  // --loop: stamp offset per pass (0: measured by the looped source)
 };
 
 }  // namespace bmp::capture

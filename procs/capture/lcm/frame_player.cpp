@@ -47,8 +47,7 @@ void FramePlayer::onAnswer(const void* data, uint32_t size, const ReceivedInfo& 
   }
   const auto sent = published_utime_.find(seq);
   if (sent == published_utime_.end() || sent->second != utime) {
-    ++stray_answers_;
-    status_.malformed();
+    ++stray_answers_;  // counted in the heartbeat's malformed by reportMalformed, once
     lcm_.reportMalformed(info.channel, size,
                          "answer to a frame this capture published (seq " + std::to_string(seq) + ", utime " +
                              std::to_string(utime) + "); ignored");

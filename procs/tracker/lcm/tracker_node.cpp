@@ -27,10 +27,8 @@ TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChann
   if (!outputs_.trajectory.empty()) live_trajectory_.emplace(outputs_.trajectory, kLiveComment);
   if (!outputs_.keyframe_trajectory.empty())
     live_keyframes_.emplace(outputs_.keyframe_trajectory, kLiveComment);
-  ctx_.lcm.subscribe<rgbd_frame_t>(channels_.frames, [this](const rgbd_frame_t& msg, const ReceivedInfo&) {
-    ++received_;
-    queue_.push(msg);
-  });
+  ctx_.lcm.subscribe<rgbd_frame_t>(channels_.frames,
+                                   [this](const rgbd_frame_t& msg, const ReceivedInfo&) { onFrame(msg); });
   receiver_ = std::thread([this] { receive(); });
 }
 
@@ -47,6 +45,16 @@ void TrackerNode::receive() {
       ctx_.stop.request();
     }
   }
+}
+
+void TrackerNode::onFrame(const rgbd_frame_t& msg) {
+  ++received_;
+  // Judged here, in arrival order, before the queue: a frame the queue later drops was received and is
+  // counted as dropped, not also as a gap (lost) when the next one is tracked.
+  const FrameStream::Verdict verdict = stream_.accept(msg);
+  lost_before_ += verdict.lost_before;
+  refused_ += verdict.ok ? 0 : 1;
+  queue_.push({msg, verdict});
 }
 
 void TrackerNode::onDetections(const detections_t& msg) {
@@ -95,16 +103,19 @@ void TrackerNode::releaseHeldKeyframes(bool all) {
 void TrackerNode::syncStatus() {
   const int64_t received = received_.load();
   const auto dropped = static_cast<int64_t>(queue_.dropped());
+  const int64_t lost = lost_before_.load();
   ctx_.status.received(received - received_reported_);
   ctx_.status.dropped(dropped - dropped_reported_);
+  ctx_.status.lost(lost - lost_reported_);
   received_reported_ = received;
   dropped_reported_ = dropped;
+  lost_reported_ = lost;
 }
 
 void TrackerNode::run(double idle_exit_s) {
   Stopwatch idle;
   while (!ctx_.stop.requested()) {
-    std::optional<rgbd_frame_t> msg = queue_.popFor(std::chrono::milliseconds(held_.empty() ? 100 : 10));
+    std::optional<Queued> msg = queue_.popFor(std::chrono::milliseconds(held_.empty() ? 100 : 10));
     syncStatus();
     if (tracker_) releaseHeldKeyframes(false);
     if (msg) {
@@ -118,10 +129,13 @@ void TrackerNode::run(double idle_exit_s) {
   }
   if (tracker_) releaseHeldKeyframes(true);
   receiving_ = false;
+  if (receiver_.joinable()) receiver_.join();  // its counts are final from here
+  syncStatus();
   if (tracker_) tracker_->finish();
-  log::info("tracked ", timing_.count(), " frames, ", lost_, " lost; ", stream_.lostBefore(),
-            " frame(s) never arrived, ", queue_.dropped(), " dropped while busy, ", stream_.refused(),
-            " refused; tracking ", timing_.summary());
+  log::info("tracked ", timing_.count(), " frames, ", lost_, " lost, ", degraded_, " degraded (fewer than ",
+            policy_.degraded_inliers, " inliers); ", lost_before_.load(), " frame(s) never arrived, ",
+            queue_.dropped(), " dropped while busy, ", refused_.load(), " refused; tracking ",
+            timing_.summary());
 }
 
 void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
@@ -132,16 +146,17 @@ void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
   ctx_.status.published();
 }
 
-void TrackerNode::process(const rgbd_frame_t& msg) {
-  const FrameStream::Verdict verdict = stream_.accept(msg);
+void TrackerNode::process(const Queued& frame) {
+  const rgbd_frame_t& msg = frame.msg;
+  const FrameStream::Verdict& verdict = frame.verdict;
   if (!verdict.reason.empty() && verdict.ok) log::warn("frame seq ", msg.seq, ": ", verdict.reason);
-  ctx_.status.lost(verdict.lost_before);
-  if (verdict.lost_before > 0) {
-    // The constant-velocity prediction spans one frame; after a gap it would point the wrong way.
-    log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
-    if (tracker_) tracker_->forgetMotion();
-  }
+  if (verdict.lost_before > 0) log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
   if (!verdict.ok) return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason);
+  // The constant-velocity prediction spans one frame; after a gap (lost upstream or dropped from our queue)
+  // it would point the wrong way.
+  const int64_t gaps = lost_before_.load() + static_cast<int64_t>(queue_.dropped());
+  if (tracker_ && gaps != gaps_seen_) tracker_->forgetMotion();
+  gaps_seen_ = gaps;
   cv::Mat color, depth;
   try {
     color = decodeImage(fromMsg(msg.color));
@@ -175,7 +190,14 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
   if (live_trajectory_ && r.ok()) live_trajectory_->append({r.stamp, r.T_world_cam});
   if (live_keyframes_ && r.new_keyframe)
     live_keyframes_->append({r.new_keyframe->stamp, r.new_keyframe->T_world_cam});
-  ctx_.lcm.publish(channels_.pose, toPoseMessage(msg, r));
+  slam_pose_t pose = toPoseMessage(msg, r);
+  // Tracked, but on few inliers: a real-time run under load shows it before its pose goes wrong, so the
+  // consumer is told not to trust this one fully.
+  if (pose.state == slam_pose_t::STATE_OK && r.num_tracked < policy_.degraded_inliers) {
+    pose.state = slam_pose_t::STATE_DEGRADED;
+    ++degraded_;
+  }
+  ctx_.lcm.publish(channels_.pose, pose);
   ctx_.status.published();
   if (r.new_keyframe) {
     const cv::Mat mask = r.dynamic_mask.empty() ? cv::Mat::zeros(color.size(), CV_8UC1) : r.dynamic_mask;

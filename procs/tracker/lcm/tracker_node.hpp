@@ -1,8 +1,9 @@
 #pragma once
-// bmp-tracker's LCM side: a receive thread drains the LCM socket into a bounded queue (the oldest waiting
-// frame gives way, counted), so a slow frame becomes a counted drop here instead of a silent loss in the
-// kernel's buffer; the main thread checks each frame (frame_checks.hpp), tracks it and publishes the
-// results. The process's main only reads configuration and runs it.
+// bmp-tracker's LCM side: a receive thread drains the LCM socket, checks each frame against the stream
+// (frame_checks.hpp: sequence gaps counted as lost there, before the queue) and puts it in a bounded queue
+// (the oldest waiting frame gives way, counted as dropped), so a slow frame becomes a counted drop here
+// instead of a silent loss in the kernel's buffer, and no frame is counted twice. The main thread tracks
+// each frame and publishes the results. The process's main only reads configuration and runs it.
 #include <atomic>
 #include <deque>
 #include <memory>
@@ -55,8 +56,14 @@ class TrackerNode {
   void writeTrajectories();
 
  private:
+  // A frame with the stream's verdict on it, given on the receive thread.
+  struct Queued {
+    rgbd_frame_t msg;
+    FrameStream::Verdict verdict;
+  };
   void receive();  // the receive thread's loop
-  void process(const rgbd_frame_t& msg);
+  void onFrame(const rgbd_frame_t& msg);  // on the receive thread
+  void process(const Queued& frame);
   void onDetections(const detections_t& msg);
   std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg);
   // Real time: publishes held keyframes whose answer came (with late boxes applied) or whose time is up.
@@ -70,11 +77,14 @@ class TrackerNode {
   ProcessContext& ctx_;
   TrackerConfig config_;
   TrackerChannels channels_;
-  BoundedQueue<rgbd_frame_t> queue_;
+  BoundedQueue<Queued> queue_;
   std::atomic<bool> receiving_{true};
-  std::atomic<int64_t> received_{0};
-  int64_t received_reported_ = 0, dropped_reported_ = 0;
-  FrameStream stream_;
+  // The receive thread's counts, read by the main thread for the heartbeat.
+  std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0};
+  int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0;
+  FrameStream stream_;  // receive thread only
+  int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked
+  int64_t degraded_ = 0;  // OK poses published as DEGRADED
   DetectionPolicy policy_;
   DetectionBook book_;
   std::atomic<int64_t> detections_heard_{0};
