@@ -4,7 +4,13 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <thread>
+
+#include <bmp/detections_t.hpp>
+#include <bmp/rgbd_frame_t.hpp>
+#include <bmp/slam_pose_t.hpp>
 
 #include "bmp/common/child_process.hpp"
 #include "bmp/lcm/lcm_node.hpp"
@@ -119,6 +125,63 @@ TEST(CaptureOverLcm, MalformedMessagesOnAckChannelAreSkipped) {
   const std::string log = test::readText((dir / "capture.log").string());
   EXPECT_NE(log.find("malformed message on channel SLAM_POSE"), std::string::npos) << log;
   EXPECT_EQ(test::readReport(report).size(), 120u);
+}
+
+// Forged answers (the frame's seq with another stamp, seq = INT64_MAX, the next frame's seq) never release a
+// lockstep frame: each next frame goes out only after the real answers to the one before, on both channels.
+TEST(CaptureOverLcm, LockstepIgnoresForgedAnswers) {
+  const fs::path dir = test::scratchDir("lcm_forged_answers");
+  const std::string url = test::uniqueLcmUrl(13);
+  const int frames = 20;
+  ChildProcess listener({binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "r.txt").string(),
+                         "--ack", "--ack-detections", "--ack-delay-ms", "100"},
+                        ChildProcess::Output::kFile, (dir / "listener.log").string());
+  ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
+                        "lockstep", "--end", std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS",
+                        "--wait-for", "bmp-test-listener"},
+                       ChildProcess::Output::kFile, (dir / "capture.log").string());
+  LcmNode lcm(url, [](const std::string&) {});
+  std::map<int64_t, int64_t> sent;  // seq -> utime of the frames capture published
+  std::map<int64_t, int> answered;  // seq -> real answers heard (pose and detections)
+  std::vector<std::string> order_errors;
+  int forged = 0;
+  lcm.subscribe<rgbd_frame_t>("RGBD_FRAME", [&](const rgbd_frame_t& m, const ReceivedInfo&) {
+    if (m.seq > 0 && answered[m.seq - 1] < 2) order_errors.push_back("frame " + std::to_string(m.seq));
+    sent[m.seq] = m.utime;
+    for (const auto& [seq, utime] : {std::pair<int64_t, int64_t>{m.seq, m.utime + 1},
+                                     {std::numeric_limits<int64_t>::max(), m.utime},
+                                     {m.seq + 1, m.utime}}) {
+      slam_pose_t pose{};
+      pose.seq = seq;
+      pose.utime = utime;
+      lcm.publish("SLAM_POSE", pose);
+      detections_t det{};
+      det.seq = seq;
+      det.utime = utime;
+      det.model = "forged";
+      lcm.publish("DETECTIONS", det);
+      forged += 2;
+    }
+  });
+  const auto real = [&](int64_t seq, int64_t utime) {
+    const auto it = sent.find(seq);
+    if (it != sent.end() && it->second == utime) ++answered[seq];
+  };
+  lcm.subscribe<slam_pose_t>("SLAM_POSE",
+                             [&](const slam_pose_t& m, const ReceivedInfo&) { real(m.seq, m.utime); });
+  lcm.subscribe<detections_t>("DETECTIONS",
+                              [&](const detections_t& m, const ReceivedInfo&) { real(m.seq, m.utime); });
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (capture.running() && std::chrono::steady_clock::now() < deadline) lcm.handle(10);
+  ASSERT_EQ(capture.wait(10).value_or(-1), 0);
+  listener.stop(5.0);
+  const std::string log = test::readText((dir / "capture.log").string());
+  EXPECT_EQ(sent.size(), static_cast<std::size_t>(frames));
+  EXPECT_TRUE(order_errors.empty()) << "published before the real answers: " << order_errors.front();
+  EXPECT_EQ(log.find("no answer on"), std::string::npos) << log;
+  EXPECT_NE(log.find("answers ignored (not for a frame we sent) " + std::to_string(forged)), std::string::npos)
+      << "forged " << forged << "\n"
+      << log;
 }
 
 // Lockstep with two answer channels waits for the slower consumer on each frame: a detector-like listener

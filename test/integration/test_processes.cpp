@@ -8,6 +8,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "bmp/common/child_process.hpp"
@@ -185,15 +186,16 @@ TEST(Launcher, FailingProcessFailsTheRun) {
   EXPECT_NE(o.output.find("bmp-test-listener ended early"), std::string::npos) << o.output;
 }
 
-// The pid of a running bmp-tracker whose command line mentions `marker` (its run folder), or -1.
-pid_t findTracker(const std::string& marker) {
+// The pid of a running process (e.g. "bmp-tracker") whose command line mentions `marker` (its run folder), or
+// -1.
+pid_t findProcess(const std::string& name, const std::string& marker) {
   for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
     std::string cmdline = test::readText((entry.path() / "cmdline").string());
     std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
-    if (cmdline.find("/bmp-tracker ") != std::string::npos && cmdline.find(marker) != std::string::npos)
-      return static_cast<pid_t>(std::stol(name));
+    if (cmdline.find("/" + name + " ") != std::string::npos && cmdline.find(marker) != std::string::npos)
+      return static_cast<pid_t>(std::stol(pid));
   }
   return -1;
 }
@@ -224,7 +226,7 @@ TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
   while (poses() < 20 && run.running() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_GE(poses(), 20u) << test::readText(log.string());
-  const pid_t tracker = findTracker(out.string());
+  const pid_t tracker = findProcess("bmp-tracker", out.string());
   ASSERT_GT(tracker, 0) << "bmp-tracker not found";
   ASSERT_EQ(::kill(tracker, SIGKILL), 0);
 
@@ -236,6 +238,81 @@ TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
   EXPECT_GE(kept, 20u);
   EXPECT_LT(kept, 400u);  // killed well before the end
   EXPECT_NE(test::readText((out / "eval.json").string()).find("\"ate\""), std::string::npos) << output;
+}
+
+// A run of bmp-run (tracker only, lockstep) on Bonn, with its log, for the tests that kill one of its
+// processes once the tracker has written `poses` poses.
+struct KillableRun {
+  fs::path dir, out, log;
+  std::unique_ptr<ChildProcess> run;
+  explicit KillableRun(const std::string& name, int slot) : dir(test::scratchDir(name)), out(dir / "run") {
+    std::ofstream(dir / "run.yaml")
+        << "run:\n  output_root: " << (dir / "out").string()
+        << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
+        << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\", --frame-policy, every]\n"
+        << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+    log = dir / "bmp-run.log";
+    run = std::make_unique<ChildProcess>(
+        std::vector<std::string>{binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset",
+                                 test::bonnDir(), "--frames", "400", "--out", out.string(), "--lcm-url",
+                                 test::uniqueLcmUrl(slot)},
+        ChildProcess::Output::kFile, log.string());
+  }
+  std::size_t poses() const {
+    const fs::path trajectory = out / "trajectory.txt";
+    try {
+      return fs::exists(trajectory) ? readTumTrajectory(trajectory.string()).size() : std::size_t{0};
+    } catch (const TrajectoryError&) {
+      return std::size_t{0};  // a line being written
+    }
+  }
+  bool waitForPoses(std::size_t n) const {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+    while (poses() < n && run->running() && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return poses() >= n;
+  }
+};
+
+// Capture killed mid-run: the run fails, but the dataset's ground truth was written before the first frame,
+// so the poses tracked so far are still evaluated.
+TEST(Launcher, CaptureKilledMidRunStillEvaluates) {
+  KillableRun r("launcher_killed_capture", 10);
+  ASSERT_TRUE(r.waitForPoses(20)) << test::readText(r.log.string());
+  const pid_t capture = findProcess("bmp-capture", r.out.string());
+  ASSERT_GT(capture, 0) << "bmp-capture not found";
+  ASSERT_EQ(::kill(capture, SIGKILL), 0);
+  const int status = r.run->wait(120).value_or(-1);
+  const std::string output = test::readText(r.log.string());
+  EXPECT_NE(status, 0) << output;
+  EXPECT_GE(r.poses(), 20u);
+  EXPECT_NE(test::readText((r.out / "eval.json").string()).find("\"ate\""), std::string::npos) << output;
+}
+
+// bmp-run killed outright (SIGKILL: it cannot stop anyone): its children get SIGTERM from the kernel
+// (parent-death signal) and exit cleanly, the tracker replacing its live poses with the optimised ones.
+TEST(Launcher, KilledLauncherStopsItsChildrenCleanly) {
+  KillableRun r("launcher_killed_itself", 11);
+  ASSERT_TRUE(r.waitForPoses(20)) << test::readText(r.log.string());
+  const pid_t tracker = findProcess("bmp-tracker", r.out.string());
+  const pid_t capture = findProcess("bmp-capture", r.out.string());
+  ASSERT_GT(tracker, 0);
+  ASSERT_GT(capture, 0);
+  EXPECT_NE(test::readFirstLine((r.out / "trajectory.txt").string()).find("live poses"), std::string::npos);
+  r.run->signal(SIGKILL);
+  ASSERT_TRUE(r.run->wait(10).has_value());
+  // Not our children: gone from /proc (or a zombie of init's) when they have exited.
+  const auto gone = [](pid_t pid) {
+    const std::string stat = test::readText("/proc/" + std::to_string(pid) + "/stat");
+    return stat.empty() || stat.find(") Z") != std::string::npos;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while ((!gone(tracker) || !gone(capture)) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_TRUE(gone(tracker)) << "bmp-tracker still running";
+  EXPECT_TRUE(gone(capture)) << "bmp-capture still running";
+  EXPECT_EQ(test::readFirstLine((r.out / "trajectory.txt").string()), "# timestamp tx ty tz qx qy qz qw");
+  EXPECT_GE(r.poses(), 20u);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include <bmp/detections_t.hpp>
+#include <bmp/process_status_t.hpp>
 #include <bmp/slam_pose_t.hpp>
 
 #include "bmp/lcm/lcm_node.hpp"
@@ -64,7 +65,59 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
   EXPECT_NE(json.find("\"frames\": 7, \"ok\": 3"), std::string::npos) << json;
   EXPECT_NE(json.find("\"skipped\": 1, \"per_frame_ms\""), std::string::npos) << json;
   const std::string text = formatSummaryText(s);
-  EXPECT_NE(text.find("7 frames answered: 3 ok, 1 relocalised, 1 lost"), std::string::npos) << text;
+  EXPECT_NE(text.find("7 frames answered: 3 ok, 1 relocalised, 0 degraded, 1 lost"), std::string::npos) << text;
+}
+
+// Each process's last heartbeat, by name and instance: how many frames it received, processed, dropped, lost
+// and refused, in the text and the JSON; the mapper's own figures from its message; degraded poses counted.
+TEST(RunMonitor, KeepsEachProcessLastHeartbeat) {
+  const std::string url = test::uniqueLcmUrl(2);
+  RunMonitor monitor(url, "SLAM_POSE", "DETECTIONS", "PROCESS_STATUS");
+  LcmNode publisher(url);
+  const auto beat = [&](const std::string& name, int64_t instance, int8_t state, int64_t base) {
+    process_status_t m{};
+    m.name = name;
+    m.instance = instance;
+    m.state = state;
+    m.received = base;
+    m.processed = base - 10;
+    m.dropped = 4;
+    m.lost = 5;
+    m.malformed = 1;
+    m.message = name == "bmp-mapper" ? "12 keyframes, 3400 points, 180 MiB" : "";
+    publisher.publish("PROCESS_STATUS", m);
+  };
+  beat("bmp-tracker", 7, process_status_t::STATE_RUNNING, 50);
+  beat("bmp-tracker", 7, process_status_t::STATE_FINISHED, 100);  // replaces the one before
+  beat("bmp-tracker", 9, process_status_t::STATE_FINISHED, 30);   // another start of that name
+  beat("bmp-mapper", 3, process_status_t::STATE_FINISHED, 12);
+  slam_pose_t pose{};
+  pose.state = slam_pose_t::STATE_DEGRADED;
+  publisher.publish("SLAM_POSE", pose);
+  publisher.raw().publish("PROCESS_STATUS", "junk", 4);  // counted as malformed, never a process
+  RunSummary s;
+  for (int i = 0; i < 100 && ((s = monitor.summary()).processes.size() < 3 || s.poses < 1); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(s.processes.size(), 3u);
+  const ProcessFigures& t = s.processes.at({"bmp-tracker", 7});
+  EXPECT_EQ(t.received, 100);
+  EXPECT_EQ(t.processed, 90);
+  EXPECT_EQ(s.degraded, 1);
+  EXPECT_EQ(s.ok, 0);
+  const std::string text = formatSummaryText(s);
+  EXPECT_NE(text.find("bmp-tracker: 100 received, 90 processed, 4 dropped (own queue), 5 lost (never arrived), "
+                      "1 malformed or refused"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("bmp-tracker (2): 30 received"), std::string::npos) << text;
+  EXPECT_NE(text.find("mapper:    12 keyframes, 3400 points, 180 MiB"), std::string::npos) << text;
+  EXPECT_NE(text.find("1 degraded"), std::string::npos) << text;
+  const std::string json = formatSummaryJson(s);
+  EXPECT_NE(json.find("{\"name\": \"bmp-tracker\", \"finished\": true, \"received\": 100, \"processed\": 90, "
+                      "\"dropped\": 4, \"lost\": 5, \"malformed\": 1"),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"degraded\": 1"), std::string::npos) << json;
 }
 
 TEST(RunMonitor, NothingHeardIsAnEmptySummary) {

@@ -4,12 +4,15 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <bmp/keyframe_t.hpp>
@@ -29,6 +32,13 @@
 
 namespace bmp {
 namespace {
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 camera_t bonnCamera() {
   camera_t c;
@@ -80,9 +90,8 @@ class TrackerUnderTest {
     return pumpUntil([&] { return heartbeat_ || !child_->running(); }, 30.0) && child_->running();
   }
 
-  // Publishes Bonn frame i and waits for its pose, as bmp-capture's lockstep does.
-  // damage: replaces the depth with bytes that are no PNG, as another publisher might send.
-  bool playAndWait(int i, bool damage = false) {
+  // Bonn frame i as bmp-capture publishes it, seq i.
+  rgbd_frame_t frame(int i) const {
     const auto& pair = index_.frames[i];
     rgbd_frame_t msg;
     msg.seq = i;
@@ -93,9 +102,22 @@ class TrackerUnderTest {
     msg.depth_scale = 5000.0;
     msg.color = test::fileImage(pair.rgb_path, PixelFormat::kBgr8);
     msg.depth = test::fileImage(pair.depth_path, PixelFormat::kMono16);
-    if (damage) msg.depth.data.assign(msg.depth.data.size(), 0x5a);
+    return msg;
+  }
+
+  // Publishes msg and waits for one more pose, as bmp-capture's lockstep does.
+  bool publishAndWait(const rgbd_frame_t& msg) {
+    const std::size_t before = poses.size();
     node_.publish("RGBD_FRAME", msg);
-    return pumpUntil([&] { return static_cast<int>(poses.size()) > i; }, 20.0);
+    return pumpUntil([&] { return poses.size() > before; }, 20.0);
+  }
+
+  // Publishes Bonn frame i and waits for its pose.
+  // damage: replaces the depth with bytes that are no PNG, as another publisher might send.
+  bool playAndWait(int i, bool damage = false) {
+    rgbd_frame_t msg = frame(i);
+    if (damage) msg.depth.data.assign(msg.depth.data.size(), 0x5a);
+    return publishAndWait(msg);
   }
 
   std::vector<slam_pose_t> poses;
@@ -167,6 +189,62 @@ TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   }
   EXPECT_NE(test::readFirstLine(t.trajectory()).find("live poses"), std::string::npos);
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
+}
+
+// A first frame whose camera is unusable (fx NaN or 0, depth scale 0) must not start a map with it: each is
+// answered SKIPPED with the rule it broke, and the first good frame starts tracking.
+TEST(TrackerProcess, UnusableFirstCameraIsRefusedWithTheReason) {
+  TrackerUnderTest t("tracker_bad_first_camera", 2);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  rgbd_frame_t nan_fx = t.frame(0), zero_fx = t.frame(0), zero_scale = t.frame(0);
+  nan_fx.camera.fx = std::nan("");
+  zero_fx.camera.fx = 0;
+  zero_scale.depth_scale = 0;
+  const std::pair<rgbd_frame_t, const char*> bad[] = {{nan_fx, "camera intrinsics are not finite"},
+                                                      {zero_fx, "focal length fx/fy must be positive"},
+                                                      {zero_scale, "depth_scale must be positive"}};
+  for (const auto& [msg, reason] : bad) {
+    ASSERT_TRUE(t.publishAndWait(msg)) << reason;
+    const slam_pose_t& answer = t.poses.back();
+    EXPECT_EQ(static_cast<int>(answer.state), static_cast<int>(slam_pose_t::STATE_SKIPPED)) << reason;
+    EXPECT_NE(answer.note.find(reason), std::string::npos) << answer.note;
+  }
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK));
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  // Only the good frames' poses, with the real camera: none of the refused ones started the map.
+  EXPECT_EQ(readTumTrajectory(t.trajectory()).size(), 5u);
+  const std::string log = readText(t.logPath());
+  EXPECT_NE(log.find("fx 542.823"), std::string::npos) << log;
+}
+
+// Mid-run, a frame of another camera and a frame whose stamp goes back are refused with the reason; the
+// real frames after them are tracked as before.
+TEST(TrackerProcess, CameraChangeAndStampsOutOfOrderAreRefused) {
+  TrackerUnderTest t("tracker_midrun_refusals", 3);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 10; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  rgbd_frame_t other = t.frame(10);
+  other.camera.fx *= 1.5;  // another lens: the map's scale would be wrong with it
+  ASSERT_TRUE(t.publishAndWait(other));
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  EXPECT_NE(t.poses.back().note.find("camera changed mid-run"), std::string::npos) << t.poses.back().note;
+  rgbd_frame_t back = t.frame(10);
+  back.utime = t.frame(3).utime;  // the next seq, with an old stamp
+  ASSERT_TRUE(t.publishAndWait(back));
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  EXPECT_NE(t.poses.back().note.find("stamp is not after"), std::string::npos) << t.poses.back().note;
+  rgbd_frame_t again = t.frame(5);  // an old frame replayed
+  ASSERT_TRUE(t.publishAndWait(again));
+  EXPECT_NE(t.poses.back().note.find("does not follow"), std::string::npos) << t.poses.back().note;
+  for (int i = 10; i < 15; ++i) {
+    ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+    EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK)) << i;
+  }
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  const Trajectory written = readTumTrajectory(t.trajectory());
+  ASSERT_EQ(written.size(), 15u);  // in time order, none of the refused frames
+  for (std::size_t i = 1; i < written.size(); ++i) EXPECT_GT(written[i].stamp, written[i - 1].stamp);
 }
 
 }  // namespace

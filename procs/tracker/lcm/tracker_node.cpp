@@ -192,8 +192,10 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
     live_keyframes_->append({r.new_keyframe->stamp, r.new_keyframe->T_world_cam});
   slam_pose_t pose = toPoseMessage(msg, r);
   // Tracked, but on few inliers: a real-time run under load shows it before its pose goes wrong, so the
-  // consumer is told not to trust this one fully.
-  if (pose.state == slam_pose_t::STATE_OK && r.num_tracked < policy_.degraded_inliers) {
+  // consumer is told not to trust this one fully. The frame that starts the map (its first keyframe) is the
+  // origin by definition, not an estimate, and has no inliers to count.
+  const bool starts_map = r.new_keyframe && r.new_keyframe->id == 0;
+  if (pose.state == slam_pose_t::STATE_OK && !starts_map && r.num_tracked < policy_.degraded_inliers) {
     pose.state = slam_pose_t::STATE_DEGRADED;
     ++degraded_;
   }
