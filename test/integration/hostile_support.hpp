@@ -2,8 +2,8 @@
 // Helpers for the tests that feed a running pipeline what a careless or hostile publisher would: messages
 // built with the generated types and then patched, random bytes, truncated and oversized encodings; and a
 // reader for the per-process figures of a run's summary.json.
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <random>
 #include <string>
 #include <thread>

@@ -136,10 +136,10 @@ TEST(CaptureOverLcm, LockstepIgnoresForgedAnswers) {
   ChildProcess listener({binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "r.txt").string(),
                          "--ack", "--ack-detections", "--ack-delay-ms", "100"},
                         ChildProcess::Output::kFile, (dir / "listener.log").string());
-  ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
-                        "lockstep", "--end", std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS",
-                        "--wait-for", "bmp-test-listener"},
-                       ChildProcess::Output::kFile, (dir / "capture.log").string());
+  ChildProcess capture(
+      {binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode", "lockstep", "--end",
+       std::to_string(frames), "--ack-channels", "SLAM_POSE,DETECTIONS", "--wait-for", "bmp-test-listener"},
+      ChildProcess::Output::kFile, (dir / "capture.log").string());
   LcmNode lcm(url, [](const std::string&) {});
   std::map<int64_t, int64_t> sent;  // seq -> utime of the frames capture published
   std::map<int64_t, int> answered;  // seq -> real answers heard (pose and detections)
@@ -179,7 +179,8 @@ TEST(CaptureOverLcm, LockstepIgnoresForgedAnswers) {
   EXPECT_EQ(sent.size(), static_cast<std::size_t>(frames));
   EXPECT_TRUE(order_errors.empty()) << "published before the real answers: " << order_errors.front();
   EXPECT_EQ(log.find("no answer on"), std::string::npos) << log;
-  EXPECT_NE(log.find("answers ignored (not for a frame we sent) " + std::to_string(forged)), std::string::npos)
+  EXPECT_NE(log.find("answers ignored (not for a frame we sent) " + std::to_string(forged)),
+            std::string::npos)
       << "forged " << forged << "\n"
       << log;
 }

@@ -1,7 +1,7 @@
 // Every frame a real-time publisher sent is accounted for by the tracker: answered (tracked or refused),
-// dropped from its own queue, or counted as lost (a gap in seq): after a 3 s SIGSTOP of the tracker, and in an
-// lcm-logplayer replay. The numbers are compared exactly: from the tracker's final heartbeat, the poses the
-// test heard, and what the publisher sent.
+// dropped from its own queue, or counted as lost (a gap in seq): after a 3 s SIGSTOP of the tracker, and in
+// an lcm-logplayer replay. The numbers are compared exactly: from the tracker's final heartbeat, the poses
+// the test heard, and what the publisher sent.
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -29,18 +29,18 @@ class WatchedTracker {
  public:
   WatchedTracker(const fs::path& dir, const std::string& url) : dir_(dir), lcm_(url) {
     lcm_.subscribe<slam_pose_t>("SLAM_POSE", [this](const slam_pose_t&, const ReceivedInfo&) { ++poses; });
-    lcm_.subscribe<process_status_t>("PROCESS_STATUS", [this](const process_status_t& m, const ReceivedInfo&) {
-      last[m.name] = m;
-    });
+    lcm_.subscribe<process_status_t>(
+        "PROCESS_STATUS", [this](const process_status_t& m, const ReceivedInfo&) { last[m.name] = m; });
     child_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{binPath("bmp-tracker"), "--config", test::sourceDir() + "/config/tracker.yaml",
-                                 "--lcm-url", url, "--frame-policy", "latest", "--dynamic-mode", "none",
-                                 "--idle-exit", "4"},
+        std::vector<std::string>{binPath("bmp-tracker"), "--config",
+                                 test::sourceDir() + "/config/tracker.yaml", "--lcm-url", url,
+                                 "--frame-policy", "latest", "--dynamic-mode", "none", "--idle-exit", "4"},
         ChildProcess::Output::kFile, (dir / "tracker.log").string());
   }
   ChildProcess& child() { return *child_; }
   // Handles LCM for seconds (or until done), so the test's own socket never backs up.
-  bool pumpFor(double seconds, const std::function<bool()>& done = [] { return false; }) {
+  bool pumpFor(
+      double seconds, const std::function<bool()>& done = [] { return false; }) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (!done() && std::chrono::steady_clock::now() < end) lcm_.handle(20);
     return done();

@@ -65,7 +65,8 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
   EXPECT_NE(json.find("\"frames\": 7, \"ok\": 3"), std::string::npos) << json;
   EXPECT_NE(json.find("\"skipped\": 1, \"per_frame_ms\""), std::string::npos) << json;
   const std::string text = formatSummaryText(s);
-  EXPECT_NE(text.find("7 frames answered: 3 ok, 1 relocalised, 0 degraded, 1 lost"), std::string::npos) << text;
+  EXPECT_NE(text.find("7 frames answered: 3 ok, 1 relocalised, 0 degraded, 1 lost"), std::string::npos)
+      << text;
 }
 
 // Each process's last heartbeat, by name and instance: how many frames it received, processed, dropped, lost
@@ -105,9 +106,10 @@ TEST(RunMonitor, KeepsEachProcessLastHeartbeat) {
   EXPECT_EQ(s.degraded, 1);
   EXPECT_EQ(s.ok, 0);
   const std::string text = formatSummaryText(s);
-  EXPECT_NE(text.find("bmp-tracker: 100 received, 90 processed, 4 dropped (own queue), 5 lost (never arrived), "
-                      "1 malformed or refused"),
-            std::string::npos)
+  EXPECT_NE(
+      text.find("bmp-tracker: 100 received, 90 processed, 4 dropped (own queue), 5 lost (never arrived), "
+                "1 malformed or refused"),
+      std::string::npos)
       << text;
   EXPECT_NE(text.find("bmp-tracker (2): 30 received"), std::string::npos) << text;
   EXPECT_NE(text.find("mapper:    12 keyframes, 3400 points, 180 MiB"), std::string::npos) << text;

@@ -58,10 +58,11 @@ std::string textProcess(const std::string& label, const ProcessFigures& p) {
 
 std::string jsonProcess(const ProcessFigures& p) {
   std::ostringstream out;
-  out << "{\"name\": " << jsonString(p.name) << ", \"finished\": "
-      << (p.state == process_status_t::STATE_FINISHED ? "true" : "false") << ", \"received\": " << p.received
-      << ", \"processed\": " << p.processed << ", \"dropped\": " << p.dropped << ", \"lost\": " << p.lost
-      << ", \"malformed\": " << p.malformed << ", \"message\": " << jsonString(p.message) << "}";
+  out << "{\"name\": " << jsonString(p.name)
+      << ", \"finished\": " << (p.state == process_status_t::STATE_FINISHED ? "true" : "false")
+      << ", \"received\": " << p.received << ", \"processed\": " << p.processed
+      << ", \"dropped\": " << p.dropped << ", \"lost\": " << p.lost << ", \"malformed\": " << p.malformed
+      << ", \"message\": " << jsonString(p.message) << "}";
   return out.str();
 }
 
@@ -89,9 +90,9 @@ std::string formatSummaryText(const RunSummary& s) {
 std::string formatSummaryJson(const RunSummary& s) {
   std::ostringstream out;
   out << "{\n  \"tracker\": {\"frames\": " << s.poses << ", \"ok\": " << s.ok
-      << ", \"relocalised\": " << s.relocalised << ", \"degraded\": " << s.degraded << ", \"lost\": " << s.lost
-      << ", \"initialising\": " << s.initialising << ", \"skipped\": " << s.skipped
-      << ", \"tracking_ms\": " << jsonTiming(s.tracking_ms) << "},\n";
+      << ", \"relocalised\": " << s.relocalised << ", \"degraded\": " << s.degraded
+      << ", \"lost\": " << s.lost << ", \"initialising\": " << s.initialising
+      << ", \"skipped\": " << s.skipped << ", \"tracking_ms\": " << jsonTiming(s.tracking_ms) << "},\n";
   out << "  \"detector\": {\"frames\": " << s.detections << ", \"skipped\": " << s.detections_skipped
       << ", \"per_frame_ms\": " << jsonTiming(s.detector_ms) << "},\n";
   out << "  \"end_to_end\": {\"frames_per_second\": " << number(s.answered_per_second(), 3)
@@ -138,8 +139,8 @@ void RunMonitor::onPose(int8_t state, float processing_ms) {
 RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
                        const std::string& detections_channel, const std::string& status_channel)
     : lcm_(url) {
-  lcm_.subscribe<slam_pose_t>(pose_channel,
-                              [this](const slam_pose_t& m, const ReceivedInfo&) { onPose(m.state, m.processing_ms); });
+  lcm_.subscribe<slam_pose_t>(
+      pose_channel, [this](const slam_pose_t& m, const ReceivedInfo&) { onPose(m.state, m.processing_ms); });
   lcm_.subscribe<detections_t>(detections_channel, [this](const detections_t& m, const ReceivedInfo&) {
     std::lock_guard<std::mutex> lock(mutex_);
     ++summary_.detections;

@@ -22,13 +22,13 @@ namespace bmp::launcher {
 struct ProcessFigures {
   std::string name;
   int64_t instance = 0;
-  int8_t state = 0;          // process_status_t::STATE_*
-  int64_t received = 0;      // inputs that arrived
-  int64_t processed = 0;     // inputs it used (capture: frames published)
-  int64_t dropped = 0;       // inputs it chose not to process: its own queue overflowed (capture: bad files)
-  int64_t lost = 0;          // inputs that never arrived: gaps in the sender's sequence
-  int64_t malformed = 0;     // inputs that did not decode or were refused (with a reason in its log)
-  std::string message;       // its last warning, or its own figures (the mapper's)
+  int8_t state = 0;       // process_status_t::STATE_*
+  int64_t received = 0;   // inputs that arrived
+  int64_t processed = 0;  // inputs it used (capture: frames published)
+  int64_t dropped = 0;    // inputs it chose not to process: its own queue overflowed (capture: bad files)
+  int64_t lost = 0;       // inputs that never arrived: gaps in the sender's sequence
+  int64_t malformed = 0;  // inputs that did not decode or were refused (with a reason in its log)
+  std::string message;    // its last warning, or its own figures (the mapper's)
 };
 
 struct RunSummary {

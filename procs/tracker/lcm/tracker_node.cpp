@@ -150,7 +150,8 @@ void TrackerNode::process(const Queued& frame) {
   const rgbd_frame_t& msg = frame.msg;
   const FrameStream::Verdict& verdict = frame.verdict;
   if (!verdict.reason.empty() && verdict.ok) log::warn("frame seq ", msg.seq, ": ", verdict.reason);
-  if (verdict.lost_before > 0) log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
+  if (verdict.lost_before > 0)
+    log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
   if (!verdict.ok) return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason);
   // The constant-velocity prediction spans one frame; after a gap (lost upstream or dropped from our queue)
   // it would point the wrong way.

@@ -61,7 +61,7 @@ class TrackerNode {
     rgbd_frame_t msg;
     FrameStream::Verdict verdict;
   };
-  void receive();  // the receive thread's loop
+  void receive();                         // the receive thread's loop
   void onFrame(const rgbd_frame_t& msg);  // on the receive thread
   void process(const Queued& frame);
   void onDetections(const detections_t& msg);
@@ -82,9 +82,9 @@ class TrackerNode {
   // The receive thread's counts, read by the main thread for the heartbeat.
   std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0};
   int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0;
-  FrameStream stream_;  // receive thread only
+  FrameStream stream_;     // receive thread only
   int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked
-  int64_t degraded_ = 0;  // OK poses published as DEGRADED
+  int64_t degraded_ = 0;   // OK poses published as DEGRADED
   DetectionPolicy policy_;
   DetectionBook book_;
   std::atomic<int64_t> detections_heard_{0};
