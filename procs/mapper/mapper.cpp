@@ -50,6 +50,7 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   appendToCloud(stored);
   insertIntoOctree(stored);
   result.points = stored.local.size();
+  output_stale_ = true;
   keyframes_.emplace(kf.id, std::move(stored));
   result.ok = true;
   result.milliseconds = watch.elapsedMs();
@@ -67,7 +68,7 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
       continue;
     }
     it->second.T_world_cam = u.T_world_cam;
-    cloud_stale_ = true;
+    cloud_stale_ = output_stale_ = true;
     octree_stale_ = octree_stale_ || movedBeyondThresholds(it->second);
     ++result.applied;
   }
@@ -96,6 +97,7 @@ void Mapper::rebuildOctree() {
   octree_.clear();
   for (auto& entry : keyframes_) insertIntoOctree(entry.second);
   octree_stale_ = false;
+  output_stale_ = true;
   ++rebuilds_;
 }
 
@@ -118,6 +120,24 @@ void Mapper::appendToCloud(const Stored& kf) {
 }
 
 const PointList& Mapper::cloud() {
+  // Carving is judged on the octree as it is (a pending rebuild after small pose updates changes little;
+  // flush() rebuilds before files are written).
+  const PointList& all = stitched();
+  if (!output_stale_) return output_cloud_;
+  output_stale_ = false;
+  const double below = settings_.cloud.drop_carved_below;
+  if (below <= 0) return output_cloud_ = all;
+  output_cloud_.clear();
+  output_cloud_.reserve(all.size());
+  for (const auto& p : all) {
+    // -1 (unknown) keeps the point: a leaf never seen through has no evidence against it.
+    const double probability = octree_.probability(p.position().cast<double>());
+    if (probability < 0 || probability >= below) output_cloud_.push_back(p);
+  }
+  return output_cloud_;
+}
+
+const PointList& Mapper::stitched() {
   if (cloud_stale_) {
     world_cloud_.clear();
     for (const auto& entry : keyframes_)

@@ -57,7 +57,8 @@ class Mapper {
   // Everything up to date whatever the interval (before files are written at exit).
   void flush();
 
-  // The stitched cloud, world frame, voxel-filtered at map_voxel_m.
+  // The stitched cloud, world frame, voxel-filtered at map_voxel_m, without the points whose octree leaf
+  // was carved below cloud.drop_carved_below (the octree brought up to date first).
   const PointList& cloud();
   // The cloud down-sampled to viewer_voxel_m.
   PointList viewerCloud();
@@ -83,6 +84,7 @@ class Mapper {
   void appendToCloud(const Stored& kf);
   void insertIntoOctree(Stored& kf);
   void rebuildOctree();
+  const PointList& stitched();
   bool movedBeyondThresholds(const Stored& kf) const;
 
   MapperSettings settings_;
@@ -91,6 +93,8 @@ class Mapper {
   PointList world_cloud_;
   std::size_t filtered_size_ = 0;  // world_cloud_'s first part that is already voxel-filtered
   bool cloud_stale_ = false;       // a pose changed: rebuild the cloud from the local clouds
+  PointList output_cloud_;         // world_cloud_ without carved points: what cloud() returns
+  bool output_stale_ = true;       // the cloud or the octree changed since output_cloud_ was made
   OccupancyMap octree_;
   bool octree_stale_ = false;
   double last_rebuild_s_ = -1e300;

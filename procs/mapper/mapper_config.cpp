@@ -30,6 +30,7 @@ CloudSettings readCloud(const Config& c) {
   read(c, "keyframe_voxel_m", s.keyframe_voxel_m);
   read(c, "map_voxel_m", s.map_voxel_m);
   read(c, "viewer_voxel_m", s.viewer_voxel_m);
+  read(c, "drop_carved_below", s.drop_carved_below);
   positive(c, "min_depth_m", s.min_depth_m);
   c.check(s.max_depth_m > s.min_depth_m && std::isfinite(s.max_depth_m), "max_depth_m",
           "must exceed min_depth_m");
@@ -38,6 +39,8 @@ CloudSettings readCloud(const Config& c) {
   positive(c, "keyframe_voxel_m", s.keyframe_voxel_m);
   positive(c, "map_voxel_m", s.map_voxel_m);
   positive(c, "viewer_voxel_m", s.viewer_voxel_m);
+  c.check(s.drop_carved_below >= 0.0 && s.drop_carved_below < 0.5, "drop_carved_below",
+          "must be in [0, 0.5) (0: keep every point)");
   return s;
 }
 

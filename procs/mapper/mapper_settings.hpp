@@ -14,6 +14,10 @@ struct CloudSettings {
   double keyframe_voxel_m = 0.02;  // voxel filter of one keyframe's cloud (camera frame)
   double map_voxel_m = 0.02;       // voxel filter of the stitched global cloud
   double viewer_voxel_m = 0.05;    // the down-sampled cloud published for viewers
+  // A cloud point whose octree leaf has been seen through until its occupancy probability fell below this is
+  // left out of the cloud: a mover's rim the mask missed is carved by later views of the space behind it.
+  // 0 keeps every point.
+  double drop_carved_below = 0.2;
 };
 
 // The OctoMap occupancy octree.

@@ -91,6 +91,11 @@ Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {
   return tree_->isNodeOccupied(node) ? Occupancy::kOccupied : Occupancy::kFree;
 }
 
+double OccupancyMap::probability(const Eigen::Vector3d& p) const {
+  const octomap::OcTreeNode* node = tree_->search(p.x(), p.y(), p.z());
+  return node == nullptr ? -1.0 : node->getOccupancy();
+}
+
 OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
   OccupancyGrid2D grid;
   grid.resolution = s.resolution_m;

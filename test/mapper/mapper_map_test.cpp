@@ -2,6 +2,8 @@
 // it is seen again, the grid's floor plane, and pose updates moving the cloud, the octree and the grid.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mapper/mapper.hpp"
 #include "mapper_test_util.hpp"
 
@@ -51,6 +53,36 @@ TEST(OccupancyMap, GhostIsClearedWhenTheSpaceBehindItIsSeenAgain) {
   ASSERT_TRUE(mapper.integrate(wallKeyframe(3, SE3::Identity(), kWall)).ok);
   EXPECT_EQ(mapper.occupancy().query(ghost), Occupancy::kFree);
   EXPECT_EQ(mapper.occupancy().query({0, 0, kWall + 0.005}), Occupancy::kOccupied);
+}
+
+std::size_t pointsNear(const PointList& cloud, double depth) {
+  std::size_t n = 0;
+  for (const auto& p : cloud) n += std::abs(p.z - depth) < 0.03;
+  return n;
+}
+
+TEST(CarvedPoints, AGhostLeavesTheCloudOnceItsLeafIsSeenThroughOftenEnough) {
+  MapperSettings settings = test::testSettings();
+  Mapper mapper(settings);
+  settings.cloud.drop_carved_below = 0.0;
+  Mapper keep_all(settings);
+  for (Mapper* m : {&mapper, &keep_all})
+    ASSERT_TRUE(m->integrate(wallKeyframe(0, SE3::Identity(), kWall, cv::Rect(70, 50, 20, 20), kNear)).ok);
+  const std::size_t ghost_points = pointsNear(mapper.cloud(), kNear);
+  ASSERT_GT(ghost_points, 10u);
+  // Log-odds after one hit and n misses: 0.85 - 0.41 n. Free after 3 misses (p 0.41) but not yet below
+  // drop_carved_below 0.2: a leaf seen through a few times keeps its points ...
+  for (int id = 1; id <= 3; ++id) ASSERT_TRUE(mapper.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(mapper.occupancy().query({0, 0, kNear + 0.005}), Occupancy::kFree);
+  EXPECT_EQ(pointsNear(mapper.cloud(), kNear), ghost_points);
+  // ... and after 6 misses (p 0.17) they are gone, while the wall stays whole.
+  for (int id = 4; id <= 6; ++id) ASSERT_TRUE(mapper.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(pointsNear(mapper.cloud(), kNear), 0u);
+  EXPECT_GT(pointsNear(mapper.cloud(), kWall), 1000u);
+  // drop_carved_below 0 keeps every point.
+  for (int id = 1; id <= 6; ++id)
+    ASSERT_TRUE(keep_all.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(pointsNear(keep_all.cloud(), kNear), ghost_points);
 }
 
 TEST(PlaneFrame, AxesFollowTheConfiguredUp) {
