@@ -82,7 +82,8 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
 
 void MapperNode::publishDue(double now) {
   const int64_t utime = nowUtime();
-  if (grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) {
+  const bool repeat = mapper_.keyframeCount() > 0 && now - last_grid_s_ >= process_.grid_repeat_s;
+  if ((grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) || repeat) {
     last_grid_s_ = now;
     grid_dirty_ = false;
     ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_.grid(), utime));
