@@ -64,6 +64,16 @@ OctomapSettings readOctomap(const Config& c) {
   return s;
 }
 
+MergeSettings readMerge(const Config& c) {
+  MergeSettings s;
+  read(c, "max_translation_m", s.max_translation_m);
+  read(c, "max_rotation_deg", s.max_rotation_deg);
+  c.check(std::isfinite(s.max_translation_m) && s.max_translation_m >= 0.0, "max_translation_m",
+          "must not be negative");
+  c.check(s.max_rotation_deg >= 0.0 && s.max_rotation_deg <= 180.0, "max_rotation_deg", "must be in 0..180");
+  return s;
+}
+
 RebuildSettings readRebuild(const Config& c) {
   RebuildSettings s;
   read(c, "min_interval_s", s.min_interval_s);
@@ -117,6 +127,7 @@ MapperSettings mapperSettingsFromConfig(const Config& section) {
   s.cloud = readCloud(section.section("cloud"));
   s.octomap = readOctomap(section.section("octomap"));
   s.rebuild = readRebuild(section.section("rebuild"));
+  s.merge = readMerge(section.section("merge"));
   s.grid = readGrid(section.section("grid"));
   s.pictures = readPictures(section.section("pictures"));
   // The octree cannot tell apart what is finer than its leaves, and its rays end where the cloud does.

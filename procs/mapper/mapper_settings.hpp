@@ -38,6 +38,15 @@ struct RebuildSettings {
   double min_rotation_deg = 1.0;    // ... or turned more than this
 };
 
+// Revisits: a keyframe whose pose lies this close to a stored keyframe's sees mostly what that one saw. Its
+// rays carve the octree as usual (that is how ghosts clear); its cloud is folded into the stored keyframe's
+// and voxel-filtered again, so mapping the same room over and over keeps memory bounded. 0 for both: every
+// keyframe keeps its own cloud.
+struct MergeSettings {
+  double max_translation_m = 0.05;
+  double max_rotation_deg = 5.0;
+};
+
 // The 2-D occupancy grid: the octree between two heights, projected along `up` onto the floor plane.
 // Heights are measured along `up` from the world origin. The tracker's world is its first camera's frame
 // (x right, y down, z forward), so the default up is -y and heights are relative to that camera's centre.
@@ -61,6 +70,7 @@ struct MapperSettings {
   CloudSettings cloud;
   OctomapSettings octomap;
   RebuildSettings rebuild;
+  MergeSettings merge;
   GridSettings grid;
   PictureSettings pictures;
 };

@@ -85,6 +85,53 @@ TEST(CarvedPoints, AGhostLeavesTheCloudOnceItsLeafIsSeenThroughOftenEnough) {
   EXPECT_EQ(pointsNear(keep_all.cloud(), kNear), ghost_points);
 }
 
+TEST(Revisits, AKeyframeNearAStoredOneIsFoldedIntoIt) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  const std::size_t points = mapper.cloud().size();
+  // The same wall seen from 3 cm to the side (a hand-made wall keyframe's wall is at its own depth, so a
+  // turned view would see another wall: turning is checked below).
+  const SE3 near = translation(0.03, 0, 0);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(1, near, kWall)).ok);
+  EXPECT_EQ(mapper.keyframeCount(), 1u);
+  EXPECT_EQ(mapper.mergedCount(), 1u);
+  EXPECT_TRUE(mapper.hasKeyframe(1));
+  EXPECT_FALSE(mapper.integrate(wallKeyframe(1, near, kWall)).ok);  // its id is taken
+  // Surface seen again is not doubled (a 3 cm strip is new, and voxel centroids shift a little) ...
+  EXPECT_LT(mapper.cloud().size(), points * 5 / 4);
+  // ... and what only the revisit saw is kept: a wall 0.5 m further where the stored view had a mover.
+  ASSERT_TRUE(
+      mapper.integrate(wallKeyframe(3, SE3::Identity(), kWall, cv::Rect(0, 0, 20, 120), kWall + 0.5)).ok);
+  EXPECT_EQ(mapper.mergedCount(), 2u);
+  std::size_t behind = 0;
+  for (const auto& p : mapper.cloud()) behind += std::abs(p.z - (kWall + 0.5)) < 0.03;
+  EXPECT_GT(behind, 100u);
+  // A pose update for the merged keyframe is accepted (its points are the stored keyframe's).
+  EXPECT_EQ(mapper.updatePoses({{1, near}}).applied, 1);
+  // 20 cm away, or turned by 10 degrees, is a new view: its cloud is kept.
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(2, translation(0.2, 0, 0), kWall)).ok);
+  EXPECT_EQ(mapper.keyframeCount(), 2u);
+  SE3 turned = SE3::Identity();
+  turned.linear() = Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(4, turned, kWall)).ok);
+  EXPECT_EQ(mapper.keyframeCount(), 3u);
+  // Merging off (0, 0): every keyframe's cloud is kept.
+  MapperSettings keep = test::testSettings();
+  keep.merge = {0.0, 0.0};
+  Mapper all(keep);
+  ASSERT_TRUE(all.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  ASSERT_TRUE(all.integrate(wallKeyframe(1, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(all.keyframeCount(), 2u);
+}
+
+TEST(Revisits, MergedRaysStillClearAGhost) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall, cv::Rect(70, 50, 20, 20), kNear)).ok);
+  for (int id = 1; id <= 6; ++id) ASSERT_TRUE(mapper.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
+  EXPECT_EQ(mapper.mergedCount(), 6u);
+  EXPECT_EQ(mapper.occupancy().query({0, 0, kNear + 0.005}), Occupancy::kFree);
+}
+
 TEST(PlaneFrame, AxesFollowTheConfiguredUp) {
   const PlaneFrame z_up = PlaneFrame::fromUp({0, 0, 1});
   EXPECT_TRUE(z_up.x_axis.isApprox(Eigen::Vector3d::UnitX()));
