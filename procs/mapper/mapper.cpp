@@ -47,10 +47,17 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   stored.local = voxelFilter(backProject(kf, rays_, settings_.cloud), settings_.cloud.keyframe_voxel_m);
   // Down-sampled to the octree's leaves before ray casting, so integration keeps up.
   stored.octree_local = positions(voxelFilter(stored.local, settings_.octomap.resolution_m));
-  appendToCloud(stored);
   insertIntoOctree(stored);
   result.points = stored.local.size();
-  keyframes_.emplace(kf.id, std::move(stored));
+  output_stale_ = true;
+  const int64_t revisited = revisitOf(kf.T_world_cam);
+  appendToCloud(stored);
+  if (revisited >= 0) {
+    mergeInto(keyframes_.at(revisited), stored);
+    merged_.emplace(kf.id, revisited);
+  } else {
+    keyframes_.emplace(kf.id, std::move(stored));
+  }
   result.ok = true;
   result.milliseconds = watch.elapsedMs();
   integration_ms_.add(result.milliseconds);
@@ -61,13 +68,18 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
   PoseUpdateResult result;
   for (const auto& u : updates) {
     const auto it = keyframes_.find(u.id);
+    // A merged revisit keeps nothing of its own to move: its points follow the keyframe it was merged into.
+    if (it == keyframes_.end() && merged_.count(u.id) != 0 && checkPose(u.T_world_cam).empty()) {
+      ++result.applied;
+      continue;
+    }
     std::string why = it == keyframes_.end() ? "unknown keyframe" : checkPose(u.T_world_cam);
     if (!why.empty()) {
       result.rejected.push_back("keyframe " + std::to_string(u.id) + ": " + why);
       continue;
     }
     it->second.T_world_cam = u.T_world_cam;
-    cloud_stale_ = true;
+    cloud_stale_ = output_stale_ = true;
     octree_stale_ = octree_stale_ || movedBeyondThresholds(it->second);
     ++result.applied;
   }
@@ -78,6 +90,37 @@ bool Mapper::movedBeyondThresholds(const Stored& kf) const {
   const SE3 delta = kf.T_world_cam_in_octree.inverse() * kf.T_world_cam;
   return delta.translation().norm() > settings_.rebuild.min_translation_m ||
          rotationAngle(delta) * 180.0 / M_PI > settings_.rebuild.min_rotation_deg;
+}
+
+void Mapper::mergeInto(Stored& into, const Stored& revisit) const {
+  // The revisit's points in the stored keyframe's camera frame, then both voxel-filtered again: what the
+  // revisit saw anew (space a person hid before) is kept, what it saw again adds nothing, so a keyframe's
+  // cloud is bounded by the voxels of its view.
+  const SE3 T_into_revisit = into.T_world_cam.inverse() * revisit.T_world_cam;
+  PointList local = into.local;
+  for (const auto& p : revisit.local) local.push_back(transformed(T_into_revisit, p));
+  into.local = voxelFilter(local, settings_.cloud.keyframe_voxel_m);
+  const Eigen::Isometry3f T = T_into_revisit.cast<float>();
+  PointList rays;
+  rays.reserve(into.octree_local.size() + revisit.octree_local.size());
+  for (const auto& p : into.octree_local) rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
+  for (const auto& p : revisit.octree_local) {
+    const Eigen::Vector3f q = T * p;
+    rays.push_back(ColoredPoint{q.x(), q.y(), q.z(), 0, 0, 0});
+  }
+  into.octree_local = positions(voxelFilter(rays, settings_.octomap.resolution_m));
+}
+
+int64_t Mapper::revisitOf(const SE3& T) const {
+  const MergeSettings& m = settings_.merge;
+  if (m.max_translation_m <= 0 && m.max_rotation_deg <= 0) return -1;
+  for (const auto& entry : keyframes_) {
+    const SE3 delta = entry.second.T_world_cam.inverse() * T;
+    if (delta.translation().norm() <= m.max_translation_m &&
+        rotationAngle(delta) * 180.0 / M_PI <= m.max_rotation_deg)
+      return entry.first;
+  }
+  return -1;
 }
 
 bool Mapper::maintain(double now_s) {
@@ -96,6 +139,7 @@ void Mapper::rebuildOctree() {
   octree_.clear();
   for (auto& entry : keyframes_) insertIntoOctree(entry.second);
   octree_stale_ = false;
+  output_stale_ = true;
   ++rebuilds_;
 }
 
@@ -118,6 +162,24 @@ void Mapper::appendToCloud(const Stored& kf) {
 }
 
 const PointList& Mapper::cloud() {
+  // Carving is judged on the octree as it is (a pending rebuild after small pose updates changes little;
+  // flush() rebuilds before files are written).
+  const PointList& all = stitched();
+  if (!output_stale_) return output_cloud_;
+  output_stale_ = false;
+  const double below = settings_.cloud.drop_carved_below;
+  if (below <= 0) return output_cloud_ = all;
+  output_cloud_.clear();
+  output_cloud_.reserve(all.size());
+  for (const auto& p : all) {
+    // -1 (unknown) keeps the point: a leaf never seen through has no evidence against it.
+    const double probability = octree_.probability(p.position().cast<double>());
+    if (probability < 0 || probability >= below) output_cloud_.push_back(p);
+  }
+  return output_cloud_;
+}
+
+const PointList& Mapper::stitched() {
   if (cloud_stale_) {
     world_cloud_.clear();
     for (const auto& entry : keyframes_)

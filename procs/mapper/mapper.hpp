@@ -57,7 +57,8 @@ class Mapper {
   // Everything up to date whatever the interval (before files are written at exit).
   void flush();
 
-  // The stitched cloud, world frame, voxel-filtered at map_voxel_m.
+  // The stitched cloud, world frame, voxel-filtered at map_voxel_m, without the points whose octree leaf
+  // was carved below cloud.drop_carved_below (the octree brought up to date first).
   const PointList& cloud();
   // The cloud down-sampled to viewer_voxel_m.
   PointList viewerCloud();
@@ -66,8 +67,10 @@ class Mapper {
 
   // Points in the stitched cloud, some perhaps still waiting for the voxel filter (for status lines).
   std::size_t pointCount() const { return world_cloud_.size(); }
+  // Keyframes whose cloud is kept, and those merged into one of them (merge settings: a revisit).
   std::size_t keyframeCount() const { return keyframes_.size(); }
-  bool hasKeyframe(int64_t id) const { return keyframes_.count(id) != 0; }
+  std::size_t mergedCount() const { return merged_.size(); }
+  bool hasKeyframe(int64_t id) const { return keyframes_.count(id) != 0 || merged_.count(id) != 0; }
   const MapperSettings& settings() const { return settings_; }
   const TimingStats& integrationTimes() const { return integration_ms_; }
   int rebuildCount() const { return rebuilds_; }
@@ -83,14 +86,22 @@ class Mapper {
   void appendToCloud(const Stored& kf);
   void insertIntoOctree(Stored& kf);
   void rebuildOctree();
+  const PointList& stitched();
   bool movedBeyondThresholds(const Stored& kf) const;
+  // Folds a revisit's clouds into a stored keyframe's (its camera frame), voxel-filtered again.
+  void mergeInto(Stored& into, const Stored& revisit) const;
+  // The id of a stored keyframe whose pose is within the merge thresholds of T, or -1.
+  int64_t revisitOf(const SE3& T_world_cam) const;
 
   MapperSettings settings_;
   RayTable rays_;
   std::map<int64_t, Stored> keyframes_;  // by id: rebuilds replay them in creation order
+  std::map<int64_t, int64_t> merged_;    // a revisit's id -> the stored keyframe it was merged into
   PointList world_cloud_;
   std::size_t filtered_size_ = 0;  // world_cloud_'s first part that is already voxel-filtered
   bool cloud_stale_ = false;       // a pose changed: rebuild the cloud from the local clouds
+  PointList output_cloud_;         // world_cloud_ without carved points: what cloud() returns
+  bool output_stale_ = true;       // the cloud or the octree changed since output_cloud_ was made
   OccupancyMap octree_;
   bool octree_stale_ = false;
   double last_rebuild_s_ = -1e300;

@@ -30,6 +30,7 @@ CloudSettings readCloud(const Config& c) {
   read(c, "keyframe_voxel_m", s.keyframe_voxel_m);
   read(c, "map_voxel_m", s.map_voxel_m);
   read(c, "viewer_voxel_m", s.viewer_voxel_m);
+  read(c, "drop_carved_below", s.drop_carved_below);
   positive(c, "min_depth_m", s.min_depth_m);
   c.check(s.max_depth_m > s.min_depth_m && std::isfinite(s.max_depth_m), "max_depth_m",
           "must exceed min_depth_m");
@@ -38,6 +39,8 @@ CloudSettings readCloud(const Config& c) {
   positive(c, "keyframe_voxel_m", s.keyframe_voxel_m);
   positive(c, "map_voxel_m", s.map_voxel_m);
   positive(c, "viewer_voxel_m", s.viewer_voxel_m);
+  c.check(s.drop_carved_below >= 0.0 && s.drop_carved_below < 0.5, "drop_carved_below",
+          "must be in [0, 0.5) (0: keep every point)");
   return s;
 }
 
@@ -58,6 +61,16 @@ OctomapSettings readOctomap(const Config& c) {
   c.check(s.clamp_max > s.clamp_min && s.clamp_max < 1.0, "clamp_max", "must be in (clamp_min, 1)");
   c.check(s.occupied_threshold > s.clamp_min && s.occupied_threshold < s.clamp_max, "occupied_threshold",
           "must lie between clamp_min and clamp_max");
+  return s;
+}
+
+MergeSettings readMerge(const Config& c) {
+  MergeSettings s;
+  read(c, "max_translation_m", s.max_translation_m);
+  read(c, "max_rotation_deg", s.max_rotation_deg);
+  c.check(std::isfinite(s.max_translation_m) && s.max_translation_m >= 0.0, "max_translation_m",
+          "must not be negative");
+  c.check(s.max_rotation_deg >= 0.0 && s.max_rotation_deg <= 180.0, "max_rotation_deg", "must be in 0..180");
   return s;
 }
 
@@ -114,6 +127,7 @@ MapperSettings mapperSettingsFromConfig(const Config& section) {
   s.cloud = readCloud(section.section("cloud"));
   s.octomap = readOctomap(section.section("octomap"));
   s.rebuild = readRebuild(section.section("rebuild"));
+  s.merge = readMerge(section.section("merge"));
   s.grid = readGrid(section.section("grid"));
   s.pictures = readPictures(section.section("pictures"));
   // The octree cannot tell apart what is finer than its leaves, and its rays end where the cloud does.

@@ -14,6 +14,10 @@ struct CloudSettings {
   double keyframe_voxel_m = 0.02;  // voxel filter of one keyframe's cloud (camera frame)
   double map_voxel_m = 0.02;       // voxel filter of the stitched global cloud
   double viewer_voxel_m = 0.05;    // the down-sampled cloud published for viewers
+  // A cloud point whose octree leaf has been seen through until its occupancy probability fell below this is
+  // left out of the cloud: a mover's rim the mask missed is carved by later views of the space behind it.
+  // 0 keeps every point.
+  double drop_carved_below = 0.2;
 };
 
 // The OctoMap occupancy octree.
@@ -32,6 +36,15 @@ struct RebuildSettings {
   double min_interval_s = 5.0;      // at most once per interval (a rebuild re-casts every keyframe's rays)
   double min_translation_m = 0.02;  // only when some keyframe moved more than this ...
   double min_rotation_deg = 1.0;    // ... or turned more than this
+};
+
+// Revisits: a keyframe whose pose lies this close to a stored keyframe's sees mostly what that one saw. Its
+// rays carve the octree as usual (that is how ghosts clear); its cloud is folded into the stored keyframe's
+// and voxel-filtered again, so mapping the same room over and over keeps memory bounded. 0 for both: every
+// keyframe keeps its own cloud.
+struct MergeSettings {
+  double max_translation_m = 0.05;
+  double max_rotation_deg = 5.0;
 };
 
 // The 2-D occupancy grid: the octree between two heights, projected along `up` onto the floor plane.
@@ -57,6 +70,7 @@ struct MapperSettings {
   CloudSettings cloud;
   OctomapSettings octomap;
   RebuildSettings rebuild;
+  MergeSettings merge;
   GridSettings grid;
   PictureSettings pictures;
 };

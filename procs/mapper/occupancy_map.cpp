@@ -91,6 +91,11 @@ Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {
   return tree_->isNodeOccupied(node) ? Occupancy::kOccupied : Occupancy::kFree;
 }
 
+double OccupancyMap::probability(const Eigen::Vector3d& p) const {
+  const octomap::OcTreeNode* node = tree_->search(p.x(), p.y(), p.z());
+  return node == nullptr ? -1.0 : node->getOccupancy();
+}
+
 OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
   OccupancyGrid2D grid;
   grid.resolution = s.resolution_m;
@@ -112,15 +117,23 @@ OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
   return grid;
 }
 
+// OcTree::writeBinaryData and writeBinaryConst print "Writing N nodes ... done." from the installed library
+// (built without NDEBUG); the node recursion they wrap is silent, so the mapper's log stays its own.
 std::string OccupancyMap::binaryData() const {
   std::ostringstream out;
-  tree_->writeBinaryData(out);
+  if (tree_->getRoot() != nullptr) tree_->writeBinaryNode(out, tree_->getRoot());
   return out.str();
 }
 
 std::string OccupancyMap::binaryFile() const {
+  // The header writeBinaryConst writes (AbstractOccupancyOcTree::binaryFileHeader and its fields), which
+  // OcTree::readBinary, octovis and every OctoMap reader expect.
   std::ostringstream out;
-  tree_->writeBinaryConst(out);
+  out << "# Octomap OcTree binary file\n"
+      << "# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+      << "id " << tree_->getTreeType() << "\nsize " << tree_->size() << "\nres " << tree_->getResolution()
+      << "\ndata\n";
+  out << binaryData();
   return out.str();
 }
 

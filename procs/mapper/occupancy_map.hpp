@@ -31,6 +31,8 @@ class OccupancyMap {
   // One scan: every point is a hit, every voxel on the way from origin a miss; rays are cut at max_range.
   void insertScan(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& origin_world);
   Occupancy query(const Eigen::Vector3d& p_world) const;
+  // The leaf's occupancy probability, or -1 where nothing is known.
+  double probability(const Eigen::Vector3d& p_world) const;
 
   // The grid: leaves whose height span meets [height_min, height_max] projected along the plane's up;
   // a cell is occupied if any such leaf is, free if one is free and none occupied, unknown otherwise.

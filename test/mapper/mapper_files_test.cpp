@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -110,6 +111,23 @@ TEST_F(MapFiles, OctreeLoadsWithOctomap) {
   const octomap::OcTreeNode* air = tree.search(0.2, 0.0, 1.5);
   ASSERT_NE(air, nullptr);
   EXPECT_FALSE(tree.isNodeOccupied(air));
+}
+
+// The mapper writes the octree itself (OctoMap's own writers print to the process's output): the bytes must
+// be what OctoMap's writeBinaryConst gives, and nothing may be printed.
+TEST_F(MapFiles, OctreeBytesMatchOctomapsWriterAndNothingIsPrinted) {
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  const std::string file = mapper.occupancy().binaryFile();
+  const std::string data = mapper.occupancy().binaryData();
+  const std::string printed =
+      ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed, "");
+  std::ostringstream reference_file, reference_data;
+  mapper.occupancy().tree().writeBinaryConst(reference_file);
+  mapper.occupancy().tree().writeBinaryData(reference_data);
+  EXPECT_EQ(file, reference_file.str());
+  EXPECT_EQ(data, reference_data.str());
 }
 
 TEST_F(MapFiles, GridLoadsAsAMapServerMap) {

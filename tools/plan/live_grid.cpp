@@ -3,6 +3,7 @@
 #include <bmp/occupancy_grid_t.hpp>
 
 #include <optional>
+#include <sstream>
 
 #include "bmp/common/timing.hpp"
 #include "bmp/lcm/conversions.hpp"
@@ -36,7 +37,12 @@ PlanGrid receiveLiveGrid(const std::string& lcm_url, const std::string& channel,
                                    [&](const occupancy_grid_t& m, const ReceivedInfo&) { latest = m; });
   Stopwatch watch;
   while (!latest && watch.elapsedMs() < timeout_s * 1000.0) node.handle(100);
-  if (!latest) throw MapFileError("no " + channel + " message within " + std::to_string(timeout_s) + " s");
+  if (!latest) {
+    std::ostringstream why;
+    why << "no " << channel << " message within " << timeout_s
+        << " s (is bmp-mapper running on this LCM URL?)";
+    throw MapFileError(why.str());
+  }
   return fromMessage(*latest);
 }
 

@@ -30,10 +30,17 @@ int runPlan(const ArgParser& args) {
   if (args.value("unknown") != "blocked" && args.value("unknown") != "free")
     throw ArgError("--unknown must be blocked or free");
   options.unknown_is_blocked = args.value("unknown") == "blocked";
-  const plan::PlanGrid grid =
-      args.flag("live")
-          ? plan::receiveLiveGrid(args.value("lcm-url"), args.value("channel"), args.number("timeout"))
-          : plan::readMapServerMap(args.value("map"));
+  const double timeout_s = args.number("timeout");
+  if (!(timeout_s > 0 && timeout_s <= 3600)) throw ArgError("--timeout must be in (0, 3600] seconds");
+  plan::PlanGrid grid;
+  try {
+    grid = args.flag("live") ? plan::receiveLiveGrid(args.value("lcm-url"), args.value("channel"), timeout_s)
+                             : plan::readMapServerMap(args.value("map"));
+  } catch (const plan::MapFileError& e) {
+    // Its own exit status: a script can tell "no map to plan on" from "no path on this map" (1).
+    std::fprintf(stderr, "bmp-plan: no grid: %s\n", e.what());
+    return 3;
+  }
   const plan::PlanResult path = plan::planPath(grid, point(args, "from"), point(args, "to"), options);
   if (args.given("out")) {
     std::vector<uchar> png;
@@ -55,7 +62,8 @@ int main(int argc, char** argv) {
   bmp::ArgParser args(
       "bmp-plan",
       "Plans a shortest collision-free path (A*, 8-connected) on bmp-mapper's occupancy grid. "
-      "Coordinates are metres in the grid's floor plane. Exit 0 with a path, 1 without.");
+      "Coordinates are metres in the grid's floor plane. Exit 0 with a path, 1 without, 2 on bad arguments, "
+      "3 when no grid could be read (file, or no message within --timeout).");
   args.addOption("map", "FILE", "a map_server YAML (bmp-mapper's occupancy.yaml)");
   args.addFlag("live", "use the next OCCUPANCY_GRID message instead");
   args.addOption("from", "X,Y", "start, metres");
@@ -66,6 +74,7 @@ int main(int argc, char** argv) {
   args.addOption("path-out", "FILE", "the path as text, one 'x y' line per cell");
   args.addOption("lcm-url", "URL", "with --live (default: $LCM_DEFAULT_URL, else the project's default)");
   args.addOption("channel", "NAME", "with --live", "OCCUPANCY_GRID");
-  args.addOption("timeout", "S", "with --live: how long to wait for a grid", "10");
+  args.addOption("timeout", "S", "with --live: how long to wait for a grid (bmp-mapper repeats it every 5 s)",
+                 "10");
   return bmp::runTool(args, argc, argv, runPlan);
 }

@@ -42,8 +42,8 @@ void MapperNode::run() {
     }
     ctx_.status.tick();
   }
-  log::info("mapped ", mapper_.keyframeCount(), " keyframes; integration ",
-            mapper_.integrationTimes().summary());
+  log::info("mapped ", mapper_.keyframeCount(), " keyframes (+", mapper_.mergedCount(),
+            " revisits merged); integration ", mapper_.integrationTimes().summary());
 }
 
 void MapperNode::refuse(const std::string& what) {
@@ -82,7 +82,8 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
 
 void MapperNode::publishDue(double now) {
   const int64_t utime = nowUtime();
-  if (grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) {
+  const bool repeat = mapper_.keyframeCount() > 0 && now - last_grid_s_ >= process_.grid_repeat_s;
+  if ((grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) || repeat) {
     last_grid_s_ = now;
     grid_dirty_ = false;
     ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_.grid(), utime));
@@ -113,10 +114,11 @@ void MapperNode::save(const std::string& why) {
 std::string MapperNode::statusLine() const {
   const TimingStats& t = mapper_.integrationTimes();
   char line[256];
-  std::snprintf(line, sizeof(line),
-                "keyframes %zu, points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
-                mapper_.keyframeCount(), mapper_.pointCount(), mapper_.occupancy().nodeCount(),
-                static_cast<double>(residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
+  std::snprintf(
+      line, sizeof(line),
+      "keyframes %zu (+%zu merged), points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
+      mapper_.keyframeCount(), mapper_.mergedCount(), mapper_.pointCount(), mapper_.occupancy().nodeCount(),
+      static_cast<double>(residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
   return last_warning_.empty() ? line : std::string(line) + "; last warning: " + last_warning_;
 }
 

@@ -12,6 +12,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   s.grid_channel = c.get<std::string>("grid_channel", s.grid_channel);
   s.cloud_channel = c.get<std::string>("cloud_channel", s.cloud_channel);
   s.grid_period_s = c.get<double>("grid_period_s", s.grid_period_s);
+  s.grid_repeat_s = c.get<double>("grid_repeat_s", s.grid_repeat_s);
   s.cloud_period_s = c.get<double>("cloud_period_s", s.cloud_period_s);
   s.save_period_s = c.get<double>("save_period_s", s.save_period_s);
   s.max_cloud_points = c.get<int>("max_cloud_points", s.max_cloud_points);
@@ -19,6 +20,8 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
        {"keyframe_channel", "keyframe_poses_channel", "octomap_channel", "grid_channel", "cloud_channel"})
     c.check(!c.get<std::string>(key, "x").empty(), key, "must not be empty");
   c.check(std::isfinite(s.grid_period_s) && s.grid_period_s > 0, "grid_period_s", "must be positive");
+  c.check(std::isfinite(s.grid_repeat_s) && s.grid_repeat_s >= s.grid_period_s, "grid_repeat_s",
+          "must be at least grid_period_s");
   c.check(std::isfinite(s.cloud_period_s) && s.cloud_period_s > 0, "cloud_period_s", "must be positive");
   c.check(std::isfinite(s.save_period_s) && s.save_period_s >= 0, "save_period_s", "must not be negative");
   c.check(s.max_cloud_points >= 1000 && s.max_cloud_points <= 250000, "max_cloud_points",

@@ -15,6 +15,7 @@ struct MapperProcessSettings {
   std::string grid_channel = channels::kOccupancyGrid;
   std::string cloud_channel = channels::kMapCloud;
   double grid_period_s = 1.0;     // OCCUPANCY_GRID and OCTOMAP, when the map changed
+  double grid_repeat_s = 5.0;     // ... and this often even when it did not (LCM keeps no last message)
   double cloud_period_s = 2.0;    // MAP_CLOUD, when the map changed
   double save_period_s = 60.0;    // map files; 0: only on exit and SIGUSR1
   int max_cloud_points = 200000;  // MAP_CLOUD is thinned to this many points (LCM messages stay < 4 MiB)
