@@ -1,5 +1,7 @@
 #include "tracker/lcm/tracker_node.hpp"
 
+#include <algorithm>
+
 #include "bmp/common/log.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "detector/lcm/detections_message.hpp"
@@ -211,8 +213,19 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
       ctx_.status.published();
     }
   }
-  if (!r.keyframe_updates.empty()) {
-    ctx_.lcm.publish(channels_.keyframe_poses, toKeyFramePosesMessage(msg.utime, r.keyframe_updates));
+  // A keyframe still held for its boxes has not been announced: its new pose goes into the held message
+  // instead, so the mapper never hears of a keyframe's move before the keyframe.
+  std::vector<KeyFramePose> updates;
+  for (const KeyFramePose& u : r.keyframe_updates) {
+    const auto held = std::find_if(held_.begin(), held_.end(),
+                                   [&](const HeldKeyframe& h) { return h.keyframe.id == u.id; });
+    if (held != held_.end())
+      held->keyframe.T_world_cam = u.T_world_cam;
+    else
+      updates.push_back(u);
+  }
+  if (!updates.empty()) {
+    ctx_.lcm.publish(channels_.keyframe_poses, toKeyFramePosesMessage(msg.utime, updates));
     ctx_.status.published();
   }
 }
