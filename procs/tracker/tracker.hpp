@@ -54,9 +54,9 @@ struct TrackResult {
   // stage against ground-truth masks (precision, recall).
   std::vector<cv::Point2f> keypoints;
   std::vector<uint8_t> keypoint_dynamic;
-  double extract_ms = 0.0;                     // ORB extraction
-  double lock_wait_ms = 0.0;                   // waiting for local mapping to let go of the map
-  double processing_ms = 0.0;                  // the whole call
+  double extract_ms = 0.0;     // ORB extraction
+  double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
+  double processing_ms = 0.0;  // the whole call
   bool ok() const { return state == TrackingState::kOk || state == TrackingState::kRelocalised; }
 };
 

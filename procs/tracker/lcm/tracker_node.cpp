@@ -16,7 +16,7 @@ const char* const kLiveComment = "live poses as tracked; a clean exit replaces t
 TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChannels channels,
                          std::size_t queue_capacity, const TrackerOutputs& outputs, DetectionPolicy policy)
     : ctx_(ctx),
-      config_(std::move(config)),
+      config_(config),
       channels_(std::move(channels)),
       queue_(queue_capacity, WhenFull::kDropOldest),
       policy_(policy),
