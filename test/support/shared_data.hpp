@@ -1,5 +1,7 @@
 #pragma once
 // Paths to ../shared (read in place, never copied) and to the repository, for tests.
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -27,9 +29,16 @@ inline std::string binPath(const std::string& name) {
   return std::string(BMP_BINARY_DIR) + "/bin/" + name;
 }
 
-// A fresh empty directory under the build tree's test scratch area.
+// A fresh empty directory under the build tree's test scratch area, of its own for the running test: ctest
+// runs every test case as a process of its own, two at a time, so two cases asking for the same name must
+// not wipe each other's folder.
 inline std::filesystem::path scratchDir(const std::string& name) {
-  const auto dir = std::filesystem::path(BMP_BINARY_DIR) / "test-scratch" / name;
+  std::string test = "outside-a-test";
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    test = std::string(info->test_suite_name()) + "." + info->name();
+  for (char& c : test)
+    if (c == '/') c = '_';
+  const auto dir = std::filesystem::path(BMP_BINARY_DIR) / "test-scratch" / test / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
