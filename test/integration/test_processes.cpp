@@ -103,7 +103,13 @@ TEST(Processes, CaptureSurvivesItsConsumerBeingKilled) {
   ChildProcess capture({binPath("bmp-capture"), "--lcm-url", url, "--dataset", test::bonnDir(), "--mode",
                         "realtime", "--speed", "4", "--end", "200", "--wait-for", "bmp-test-listener"},
                        ChildProcess::Output::kFile, (dir / "capture.log").string());
-  std::this_thread::sleep_for(std::chrono::seconds(1));
+  // Killed once capture has heard it and plays (a fixed sleep raced the listener's start on a loaded machine:
+  // killed before its first heartbeat, capture waited for it in vain).
+  const auto playing = [&] {
+    return test::readText((dir / "capture.log").string()).find("playing ") != std::string::npos;
+  };
+  for (int i = 0; i < 600 && !playing(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(playing()) << test::readText((dir / "capture.log").string());
   listener.signal(SIGKILL);
   EXPECT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
 }
