@@ -9,10 +9,12 @@
 #include <thread>
 
 #include <bmp/detections_t.hpp>
+#include <bmp/process_status_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 #include <bmp/slam_pose_t.hpp>
 
 #include "bmp/common/child_process.hpp"
+#include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/lcm/frame_message.hpp"
 #include "capture/tum_sequence.hpp"
@@ -81,6 +83,19 @@ TEST(CaptureOverLcm, BonnRealtimeDeliversEveryFrame) {
   EXPECT_NE(played.capture_log.find("published 927 frames in 3"), std::string::npos) << played.capture_log;
 }
 
+// Whether a heartbeat of the named process is heard on url within timeout_s: it subscribes before its first
+// heartbeat and sends one a second, so once heard it listens.
+bool heartbeatHeard(const std::string& url, const std::string& name, double timeout_s) {
+  LcmNode node(url);
+  bool heard = false;
+  node.subscribe<process_status_t>(
+      channels::kProcessStatus,
+      [&](const process_status_t& m, const ReceivedInfo&) { heard |= m.name == name; });
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!heard && std::chrono::steady_clock::now() < until) node.handle(100);
+  return heard;
+}
+
 TEST(CaptureOverLcm, Tum2LcmLogReplaysThroughLcmLogplayer) {
   const fs::path dir = test::scratchDir("lcm_logplayer");
   const std::string log = (dir / "bonn.lcmlog").string();
@@ -91,7 +106,9 @@ TEST(CaptureOverLcm, Tum2LcmLogReplaysThroughLcmLogplayer) {
   const std::string report = (dir / "report.txt").string();
   ChildProcess listener({binPath("bmp-test-listener"), "--lcm-url", url, "--report", report, "--decode"},
                         ChildProcess::Output::kFile, (dir / "listener.log").string());
-  std::this_thread::sleep_for(std::chrono::seconds(1));  // lcm-logplayer does not wait for listeners
+  // lcm-logplayer does not wait for listeners (a fixed second raced the listener's start under load).
+  ASSERT_TRUE(heartbeatHeard(url, "bmp-test-listener", 30.0))
+      << test::readText((dir / "listener.log").string());
   ChildProcess player({"/usr/bin/lcm-logplayer", "--lcm-url=" + url, "--speed=2", log},
                       ChildProcess::Output::kFile, (dir / "player.log").string());
   ASSERT_EQ(player.wait(120).value_or(-1), 0) << test::readText((dir / "player.log").string());
