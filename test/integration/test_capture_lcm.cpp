@@ -133,6 +133,13 @@ TEST(CaptureOverLcm, MalformedMessagesOnAckChannelAreSkipped) {
                        ChildProcess::Output::kFile, (dir / "capture.log").string());
   LcmNode intruder(url);
   const char garbage[] = "\x01\x02 not a slam_pose_t";
+  // Capture subscribes to its answers once it plays; garbage sent before that (a loaded machine starts it
+  // late) would reach nobody.
+  const auto playing = [&] {
+    return test::readText((dir / "capture.log").string()).find("playing ") != std::string::npos;
+  };
+  for (int i = 0; i < 600 && !playing() && capture.running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   for (int i = 0; i < 20 && capture.running(); ++i) {
     intruder.raw().publish("SLAM_POSE", garbage, sizeof(garbage));
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
