@@ -6,22 +6,13 @@
 
 #include <cstring>
 
+#include "mapper/pcl_points.hpp"
+
 namespace bmp::mapper {
 
 std::string encodePcd(const PointList& cloud) {
-  pcl::PointCloud<pcl::PointXYZRGB> points;
-  points.resize(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    pcl::PointXYZRGB& q = points[i];
-    q.x = cloud[i].x;
-    q.y = cloud[i].y;
-    q.z = cloud[i].z;
-    q.r = cloud[i].r;
-    q.g = cloud[i].g;
-    q.b = cloud[i].b;
-  }
   pcl::PCLPointCloud2 blob;
-  pcl::toPCLPointCloud2(points, blob);
+  pcl::toPCLPointCloud2(toPcl(cloud), blob);
   // PCL's binary PCD is its header followed by the blob's bytes (padding fields declared in the header);
   // built in memory so the file can be replaced atomically.
   pcl::PCDWriter writer;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mapper/pcl_points.hpp"
+
 namespace bmp::mapper {
 
 namespace {
@@ -15,28 +17,13 @@ namespace {
 constexpr double kMaxVoxels = 1.0e9;
 
 PointList filterOnce(const PointList& in, float leaf) {
-  pcl::PointCloud<pcl::PointXYZRGB>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZRGB>);
-  cloud->resize(in.size());
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    pcl::PointXYZRGB& q = (*cloud)[i];
-    q.x = in[i].x;
-    q.y = in[i].y;
-    q.z = in[i].z;
-    q.r = in[i].r;
-    q.g = in[i].g;
-    q.b = in[i].b;
-  }
+  const pcl::PointCloud<pcl::PointXYZRGB>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZRGB>(toPcl(in)));
   pcl::VoxelGrid<pcl::PointXYZRGB> grid;
   grid.setInputCloud(cloud);
   grid.setLeafSize(leaf, leaf, leaf);
   pcl::PointCloud<pcl::PointXYZRGB> filtered;
   grid.filter(filtered);
-  PointList out(filtered.size());
-  for (std::size_t i = 0; i < filtered.size(); ++i) {
-    const pcl::PointXYZRGB& q = filtered[i];
-    out[i] = ColoredPoint{q.x, q.y, q.z, q.r, q.g, q.b};
-  }
-  return out;
+  return fromPcl(filtered);
 }
 
 void filterInto(const PointList& in, float leaf, PointList& out) {
