@@ -62,6 +62,10 @@ void readPlayerOptions(const Config& section, const ArgParser& args, const Check
   check(p.speed > 0, "speed", "speed", "must be positive");
   p.lockstep_timeout_s = section.get<double>("lockstep_timeout_s", p.lockstep_timeout_s);
   check(p.lockstep_timeout_s > 0, "lockstep_timeout_s", "", "must be positive");
+  p.lockstep_resend_factor = section.get<double>("lockstep_resend_factor", p.lockstep_resend_factor);
+  check(p.lockstep_resend_factor >= 1, "lockstep_resend_factor", "", "must be at least 1");
+  p.lockstep_resend_min_s = section.get<double>("lockstep_resend_min_s", p.lockstep_resend_min_s);
+  check(p.lockstep_resend_min_s > 0, "lockstep_resend_min_s", "", "must be positive");
   p.progress_every_s = section.get<double>("progress_every_s", p.progress_every_s);
   check(p.progress_every_s > 0, "progress_every_s", "", "must be positive");
   p.masks_out = args.value("masks-out");

@@ -21,6 +21,11 @@ struct PlayerOptions {
   RateMode mode = RateMode::kRealtime;
   double speed = 1.0;               // realtime: recorded rate x speed
   double lockstep_timeout_s = 5.0;  // lockstep: give up waiting for an answer after this long
+  // Lockstep: a frame whose answers are late is published again (a large message from anyone can overflow
+  // the receivers' socket buffers, and the frame or its answer is lost): after this factor times the
+  // median answer time of recent frames, and never sooner than the minimum.
+  double lockstep_resend_factor = 4.0;
+  double lockstep_resend_min_s = 0.2;
   double progress_every_s = 2.0;
   std::string masks_out;  // folder for dynamic masks (synthetic only); "" = none
 };

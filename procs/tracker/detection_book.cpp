@@ -5,9 +5,10 @@ namespace bmp::tracker {
 void DetectionBook::add(int64_t seq, FrameBoxes boxes) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    by_seq_[seq] = std::move(boxes);
-    while (by_seq_.size() > capacity_) {
-      by_seq_.erase(by_seq_.begin());
+    const int64_t utime = boxes.utime;
+    by_frame_[{seq, utime}] = std::move(boxes);
+    while (by_frame_.size() > capacity_) {
+      by_frame_.erase(by_frame_.begin());
       ++discarded_;
     }
   }
@@ -16,17 +17,18 @@ void DetectionBook::add(int64_t seq, FrameBoxes boxes) {
 
 std::optional<FrameBoxes> DetectionBook::take(int64_t seq, int64_t utime, std::chrono::milliseconds wait) {
   std::unique_lock<std::mutex> lock(mutex_);
-  arrived_.wait_for(lock, wait, [&] { return by_seq_.count(seq) > 0; });
-  const auto it = by_seq_.find(seq);
-  if (it == by_seq_.end() || it->second.utime != utime) return std::nullopt;
+  const std::pair<int64_t, int64_t> key{seq, utime};
+  arrived_.wait_for(lock, wait, [&] { return by_frame_.count(key) > 0; });
+  const auto it = by_frame_.find(key);
+  if (it == by_frame_.end()) return std::nullopt;
   FrameBoxes out = std::move(it->second);
-  by_seq_.erase(it);
+  by_frame_.erase(it);
   return out;
 }
 
 std::size_t DetectionBook::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return by_seq_.size();
+  return by_frame_.size();
 }
 
 int64_t DetectionBook::discarded() const {

@@ -6,13 +6,16 @@
 //   - real time (wait = 0): it never waits; a frame whose answer is not there yet is tracked on the
 //     probabilities carried by its matches, and an answer that comes later is handed over as late
 //     (applied to the keyframe the frame made, if it made one).
-// Bounded: only the newest `capacity` answers are kept.
+// Answers are kept by (seq, stamp): one that names a frame's seq with another stamp (a forged or stale
+// answer) is kept apart and never displaces or hides the real one. Bounded: only the `capacity` answers
+// with the highest seq are kept.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "tracker/dynamic_regions.hpp"
@@ -30,17 +33,18 @@ class DetectionBook {
   explicit DetectionBook(std::size_t capacity = 256) : capacity_(capacity) {}
 
   void add(int64_t seq, FrameBoxes boxes);
-  // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came (or it belongs to
-  // another frame with that seq). Taken answers are removed.
+  // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came. Taken answers are
+  // removed.
   std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
   std::size_t size() const;
+  std::size_t capacity() const { return capacity_; }
   int64_t discarded() const;  // answers pushed out unused by newer ones
 
  private:
   const std::size_t capacity_;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
-  std::map<int64_t, FrameBoxes> by_seq_;
+  std::map<std::pair<int64_t, int64_t>, FrameBoxes> by_frame_;  // (seq, utime)
   int64_t discarded_ = 0;
 };
 

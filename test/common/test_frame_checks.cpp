@@ -99,10 +99,33 @@ TEST(FrameStream, StampsOutOfOrderAndRepeatsAreRefused) {
   const auto v = s.accept(old);
   EXPECT_FALSE(v.ok);
   EXPECT_NE(v.reason.find("stamp"), std::string::npos) << v.reason;
-  EXPECT_FALSE(s.accept(frame(1)).ok);  // a repeat
+  EXPECT_FALSE(s.accept(frame(0)).ok);  // an older frame again
   EXPECT_TRUE(s.accept(frame(3)).ok);
   EXPECT_EQ(s.lostBefore(), 0);  // seq 2 arrived: refused, not lost
   EXPECT_EQ(s.refused(), 2);
+}
+
+// Lockstep capture resends a frame whose answer is late: the last frame again is a repeat (answer it
+// again), neither refused nor used twice nor a gap; a changed copy of it is refused.
+TEST(FrameStream, TheLastFrameAgainIsARepeat) {
+  FrameStream s;
+  ASSERT_TRUE(s.accept(frame(0)).ok);
+  ASSERT_TRUE(s.accept(frame(1)).ok);
+  for (int i = 0; i < 2; ++i) {
+    const auto v = s.accept(frame(1));
+    EXPECT_FALSE(v.ok);
+    EXPECT_TRUE(v.repeat);
+    EXPECT_EQ(v.lost_before, 0);
+  }
+  auto restamped = frame(1);
+  restamped.utime += 1;
+  const auto v = s.accept(restamped);
+  EXPECT_FALSE(v.ok);
+  EXPECT_FALSE(v.repeat);
+  EXPECT_TRUE(s.accept(frame(2)).ok);
+  EXPECT_EQ(s.repeats(), 2);
+  EXPECT_EQ(s.refused(), 1);
+  EXPECT_EQ(s.lostBefore(), 0);
 }
 
 TEST(FrameStream, ACameraChangeMidRunIsRefusedClearly) {

@@ -28,6 +28,8 @@ void addOptions(ArgParser& args) {
   args.addOption("ack-delay-ms", "MS", "wait this long before answering (a slow consumer)", "0");
   args.addFlag("decode", "decode both images of every frame");
   args.addOption("expect", "N", "exit once N frames arrived (0 = run until SIGINT)", "0");
+  args.addOption("ignore-once", "SEQ",
+                 "act as if frame SEQ's first arrival was lost in the kernel (no report, no answer)", "-1");
 }
 
 int run(ProcessContext& ctx) {
@@ -40,7 +42,12 @@ int run(ProcessContext& ctx) {
   const bool decode = ctx.args.flag("decode");
   const long long expect = ctx.args.integer("expect");
   long long received = 0;
+  long long ignore_once = ctx.args.integer("ignore-once");
   ctx.lcm.subscribe<rgbd_frame_t>("RGBD_FRAME", [&](const rgbd_frame_t& msg, const ReceivedInfo&) {
+    if (msg.seq == ignore_once) {
+      ignore_once = -1;
+      return;
+    }
     bool decoded = true;
     if (decode) {
       try {

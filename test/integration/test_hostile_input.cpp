@@ -94,6 +94,12 @@ Sent publishHostile(LcmNode& lcm, const rgbd_frame_t& real) {
   forged.seq = std::numeric_limits<int64_t>::max();
   forged.utime = real.utime;
   lcm.publish("DETECTIONS", forged);
+  // The real next frame's seq with a wrong stamp: a well-formed answer for no frame, kept apart from the real
+  // one (lockstep still gets the real boxes, so "no answer on" stays out of capture's log).
+  detections_t next_seq = forged;
+  next_seq.seq = real.seq + 1;
+  next_seq.utime = real.utime + 1;
+  lcm.publish("DETECTIONS", next_seq);
   auto negative = test::encoded(detections_t{});
   test::putInt32(negative, negative.size() - 4, -1);  // num_detections = -1
   lcm.raw().publish("DETECTIONS", negative.data(), static_cast<unsigned>(negative.size()));
@@ -182,6 +188,52 @@ TEST(HostileInput, PipelineSurvivesAndCountsEveryBadMessage) {
   // As good as without them: Bonn's first 150 frames track to about 1 cm.
   const double ate = ateRmse(test::readText((out / "eval.json").string()));
   EXPECT_LT(ate, 0.03) << output;
+}
+
+}  // namespace
+}  // namespace bmp
+
+namespace bmp {
+namespace {
+
+// A 50 MB message (another program's mistake) is ~800 datagrams at once: they overflow every receiver's
+// socket buffer, and real frames or answers that arrive meanwhile are lost in the kernel. Lockstep capture
+// publishes a frame again when its answers are late, and consumers answer the repeat, so the run goes on
+// within a fraction of a second instead of waiting out the 5 s lockstep timeout, and every frame is
+// tracked.
+TEST(HostileInput, AFiftyMegabyteMessageCostsNoLockstepStall) {
+  const fs::path out = test::scratchDir("hostile_50mb") / "run";
+  const std::string url = test::uniqueLcmUrl(1);
+  LcmNode lcm(url, [](const std::string&) {});
+  int frames_heard = 0;
+  lcm.subscribe<rgbd_frame_t>("RGBD_FRAME", [&](const rgbd_frame_t& m, const ReceivedInfo&) {
+    if (m.source == "rgbd_bonn_crowd") ++frames_heard;
+  });
+  const fs::path log = out.parent_path() / "bmp-run.log";
+  const int frames = 100;
+  ChildProcess run({binPath("bmp-run"), "--dataset", test::bonnDir(), "--frames", std::to_string(frames),
+                    "--out", out.string(), "--lcm-url", url},
+                   ChildProcess::Output::kFile, log.string());
+  const std::vector<uint8_t> huge = test::randomBytes(50u << 20, 9);
+  int sent = 0;
+  for (int due : {20, 50, 80}) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+    while (frames_heard < due && run.running() && std::chrono::steady_clock::now() < deadline) lcm.handle(20);
+    if (frames_heard < due) break;
+    for (const char* channel : {"RGBD_FRAME", "SLAM_POSE"})
+      lcm.raw().publish(channel, huge.data(), static_cast<unsigned>(huge.size()));
+    ++sent;
+  }
+  ASSERT_EQ(sent, 3) << "the run ended or stalled first\n" << test::readText(log.string());
+  ASSERT_EQ(run.wait(180).value_or(-1), 0) << test::readText(log.string());
+  const std::string capture_log = test::readText((out / "logs" / "bmp-capture.log").string());
+  EXPECT_EQ(capture_log.find("no answer on"), std::string::npos) << "lockstep stalled\n" << capture_log;
+  EXPECT_NE(capture_log.find("published " + std::to_string(frames) + " frames"), std::string::npos)
+      << capture_log;
+  const std::string summary = test::readText((out / "summary.json").string());
+  EXPECT_EQ(test::processFigure(summary, "bmp-tracker", "processed"), frames) << summary;
+  EXPECT_EQ(test::processFigure(summary, "bmp-tracker", "lost"), 0) << summary;
+  EXPECT_EQ(test::processFigure(summary, "bmp-detector", "lost"), 0) << summary;
 }
 
 }  // namespace

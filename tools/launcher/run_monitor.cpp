@@ -107,8 +107,11 @@ std::string formatSummaryJson(const RunSummary& s) {
   return out.str();
 }
 
-void RunMonitor::onPose(int8_t state, float processing_ms) {
+void RunMonitor::onPose(const slam_pose_t& m) {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (!last_pose_.isNew(m.seq, m.utime)) return;  // the answer to a frame capture resent, again
+  const int8_t state = m.state;
+  const float processing_ms = m.processing_ms;
   RunSummary& s = summary_;
   ++s.poses;
   switch (state) {
@@ -139,10 +142,10 @@ void RunMonitor::onPose(int8_t state, float processing_ms) {
 RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
                        const std::string& detections_channel, const std::string& status_channel)
     : lcm_(url) {
-  lcm_.subscribe<slam_pose_t>(
-      pose_channel, [this](const slam_pose_t& m, const ReceivedInfo&) { onPose(m.state, m.processing_ms); });
+  lcm_.subscribe<slam_pose_t>(pose_channel, [this](const slam_pose_t& m, const ReceivedInfo&) { onPose(m); });
   lcm_.subscribe<detections_t>(detections_channel, [this](const detections_t& m, const ReceivedInfo&) {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (!last_detections_.isNew(m.seq, m.utime)) return;
     ++summary_.detections;
     if (!m.skipped.empty()) {
       ++summary_.detections_skipped;

@@ -12,6 +12,8 @@
 #include <thread>
 #include <utility>
 
+#include <bmp/slam_pose_t.hpp>
+
 #include "bmp/common/timing.hpp"
 #include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
@@ -59,7 +61,18 @@ class RunMonitor {
   RunSummary summary() const;
 
  private:
-  void onPose(int8_t state, float processing_ms);
+  void onPose(const slam_pose_t& m);
+  // The frame an answer is for: one answered again (capture resent the frame) is counted once.
+  struct LastFrame {
+    int64_t seq = -1, utime = -1;
+    bool isNew(int64_t s, int64_t u) {
+      const bool fresh = s != seq || u != utime;
+      seq = s;
+      utime = u;
+      return fresh;
+    }
+  };
+  LastFrame last_pose_, last_detections_;
   LcmNode lcm_;
   mutable std::mutex mutex_;
   RunSummary summary_;

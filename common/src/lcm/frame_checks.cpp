@@ -114,6 +114,13 @@ int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
 }
 
 FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
+  if (accepted_ > 0 && msg.seq == last_.seq && msg.utime == last_.utime && checkFrame(msg).empty() &&
+      first_ && sameCamera(*first_, msg)) {
+    ++repeats_;
+    Verdict v{false, "a repeat of frame " + std::to_string(msg.seq) + " (resent by lockstep capture)", 0};
+    v.repeat = true;
+    return v;
+  }
   const int64_t gap = countGap(msg);
   Verdict v = decide(msg);
   v.lost_before = gap;

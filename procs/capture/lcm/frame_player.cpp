@@ -1,7 +1,9 @@
 #include "capture/lcm/frame_player.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -64,16 +66,41 @@ void FramePlayer::remember(int64_t seq, int64_t utime) {
   while (published_utime_.size() > kRemembered) published_utime_.erase(published_utime_.begin());
 }
 
-bool FramePlayer::waitForAck(int64_t seq) {
+double FramePlayer::resendAfterMs() const {
+  double median_ms = 0.0;
+  if (!answer_ms_.empty()) {
+    std::vector<double> sorted(answer_ms_.begin(), answer_ms_.end());
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+    median_ms = sorted[sorted.size() / 2];
+  }
+  return std::max(options_.lockstep_resend_min_s * 1000.0, options_.lockstep_resend_factor * median_ms);
+}
+
+bool FramePlayer::waitForAck(const rgbd_frame_t& msg, PlayerSummary& summary) {
   const auto answered = [&] {
     for (const auto& [channel, last] : last_answered_seq_)
-      if (last < seq) return false;
+      if (last < msg.seq) return false;
     return true;
   };
+  // Recent answer times set when a frame counts as late; a few dozen follow a change of pace.
+  constexpr std::size_t kAnswerTimes = 32;
+  const double resend_ms = resendAfterMs();
   const Stopwatch watch;
+  Stopwatch since_sent;
+  bool resent = false;
   while (!answered() && !stop_.requested()) {
     if (watch.elapsedMs() > options_.lockstep_timeout_s * 1000.0) return false;
+    if (since_sent.elapsedMs() > resend_ms) {
+      lcm_.publish(options_.channel, msg);  // consumers answer a repeat again, or let the pending one go
+      since_sent.restart();
+      ++summary.resent;
+      resent = true;
+    }
     lcm_.handle(10);
+  }
+  if (!resent) {  // a resent frame's time says how long the loss took, not how long answers take
+    answer_ms_.push_back(watch.elapsedMs());
+    if (answer_ms_.size() > kAnswerTimes) answer_ms_.pop_front();
   }
   return true;
 }
@@ -114,7 +141,7 @@ PlayerSummary FramePlayer::play(FrameSource& source,
     status_.processed();
     status_.dropped(source.skips().total() - status_.droppedCount());
     if (!source.skips().last_reason.empty()) status_.setMessage(source.skips().last_reason);
-    if (options_.mode == RateMode::kLockstep && !waitForAck(seq)) {
+    if (options_.mode == RateMode::kLockstep && !waitForAck(msg, summary)) {
       ++summary.lockstep_timeouts;
       std::string missing;
       for (const auto& [channel, last] : last_answered_seq_)
@@ -142,6 +169,7 @@ PlayerSummary FramePlayer::play(FrameSource& source,
       skips.total(), " (missing ", skips.missing_files, ", corrupt ", skips.corrupt_files, ", wrong size ",
       skips.wrong_size, ")",
       summary.lockstep_timeouts ? "; lockstep timeouts " + std::to_string(summary.lockstep_timeouts) : "",
+      summary.resent ? "; resent (answers late) " + std::to_string(summary.resent) : "",
       stray_answers_ ? "; answers ignored (not for a frame we sent) " + std::to_string(stray_answers_) : "",
       summary.interrupted ? "; interrupted" : "");
   return summary;

@@ -35,7 +35,6 @@ DetectorNode::DetectorNode(ProcessContext& ctx, const DetectorSettings& settings
 }
 
 void DetectorNode::receive(const rgbd_frame_t& msg) {
-  ctx_.status.received();
   const auto refuse = [&](const std::string& why) {
     FrameResult failed;
     failed.seq = msg.seq;
@@ -44,6 +43,14 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
     skip(failed);
   };
   const FrameStream::Verdict verdict = stream_.accept(msg);
+  if (verdict.repeat) {  // capture resent it: answer again if the answer is out, else it is on its way
+    if (const auto again = last_answer_.forFrame(msg.seq, msg.utime)) {
+      ctx_.lcm.publish(settings_.detections_channel, *again);
+      ++repeats_answered_;
+    }
+    return;
+  }
+  ctx_.status.received();  // a repeat is not a frame of its own
   ctx_.status.lost(verdict.lost_before);
   if (!verdict.ok) return refuse(verdict.reason);
   FrameJob job;
@@ -63,7 +70,12 @@ void DetectorNode::skip(const FrameResult& failed) {
   log::warn(warning);
   ctx_.status.malformed();
   ctx_.status.setMessage(warning);
-  ctx_.lcm.publish(settings_.detections_channel, toDetectionsMessage(failed, model_name_));
+  answer(toDetectionsMessage(failed, model_name_));
+}
+
+void DetectorNode::answer(const detections_t& msg) {
+  last_answer_.remember(msg);
+  ctx_.lcm.publish(settings_.detections_channel, msg);
 }
 
 void DetectorNode::publishResults() {
@@ -72,7 +84,7 @@ void DetectorNode::publishResults() {
       skip(result);
       continue;
     }
-    ctx_.lcm.publish(settings_.detections_channel, toDetectionsMessage(result, model_name_));
+    answer(toDetectionsMessage(result, model_name_));
     ctx_.status.processed();
     frame_times_.add(result.total_ms);
     ctx_.status.published();
@@ -93,7 +105,8 @@ int DetectorNode::run() {
   }
   log::info("processed ", ctx_.status.processedCount(), " of ", ctx_.status.receivedCount(),
             " frame(s), dropped ", ctx_.status.droppedCount(), ", malformed ", ctx_.status.malformedCount(),
-            ", not yet processed at exit ", worker_.pending(), "; per frame ",
+            ", not yet processed at exit ", worker_.pending(), ", resent by capture ", stream_.repeats(),
+            " (", repeats_answered_, " answered again); per frame ",
             frame_times_.empty() ? std::string("-") : frame_times_.summary());
   return 0;
 }

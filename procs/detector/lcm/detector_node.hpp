@@ -2,10 +2,12 @@
 // bmp-detector's LCM side: RGBD_FRAME in, handed to the DetectionWorker's thread; its results out as
 // DETECTIONS. The LCM thread only receives and publishes, so it never waits for the network. The process's
 // main only reads the settings and runs it.
+#include <bmp/detections_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/timing.hpp"
 #include "bmp/lcm/frame_checks.hpp"
+#include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
 #include "detector/detection_worker.hpp"
 #include "detector/detector.hpp"
@@ -32,6 +34,7 @@ class DetectorNode {
   // A frame that cannot be processed is warned about, counted, and still answered (no boxes, the reason),
   // so lockstep never waits in vain.
   void skip(const FrameResult& failed);
+  void answer(const detections_t& msg);  // publishes and remembers it for a repeated frame
 
   ProcessContext& ctx_;
   DetectorSettings settings_;
@@ -39,7 +42,9 @@ class DetectorNode {
   std::string model_name_;
   Wakeup wakeup_;
   TimingStats frame_times_;
-  FrameStream stream_;      // refuses unusable or out-of-order frames, counts those lost upstream
+  FrameStream stream_;  // refuses unusable or out-of-order frames, counts those lost upstream
+  LastAnswer<detections_t> last_answer_;  // published again for a frame capture resends
+  int64_t repeats_answered_ = 0;
   DetectionWorker worker_;  // last: its thread stops first, before what it uses goes
 };
 

@@ -1,6 +1,7 @@
 #include "tracker/lcm/tracker_node.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "bmp/common/log.hpp"
 #include "bmp/lcm/conversions.hpp"
@@ -50,19 +51,48 @@ void TrackerNode::receive() {
 }
 
 void TrackerNode::onFrame(const rgbd_frame_t& msg) {
-  ++received_;
   // Judged here, in arrival order, before the queue: a frame the queue later drops was received and is
   // counted as dropped, not also as a gap (lost) when the next one is tracked.
   const FrameStream::Verdict verdict = stream_.accept(msg);
+  if (verdict.repeat) {  // capture resent it: answer again if the answer is out, else it is on its way
+    if (const auto again = last_pose_.forFrame(msg.seq, msg.utime)) {
+      ctx_.lcm.publish(channels_.pose, *again);
+      ++repeats_answered_;
+    }
+    return;
+  }
+  ++received_;  // a repeat is not a frame of its own
   lost_before_ += verdict.lost_before;
-  refused_ += verdict.ok ? 0 : 1;
+  if (!verdict.ok) return refuse(msg, verdict);
+  newest_frame_seq_ = std::max(newest_frame_seq_, msg.seq);
   queue_.push({msg, verdict});
+}
+
+void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict) {
+  // Answered here, on the receive thread: a flood of bad frames never pushes real ones out of the queue.
+  const std::string reason = "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason;
+  if (verdict.lost_before > 0)
+    log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
+  log::warn(reason, "; skipped");
+  const slam_pose_t answer = toSkippedPoseMessage(msg, reason);
+  last_pose_.remember(answer);
+  ctx_.lcm.publish(channels_.pose, answer);
+  {
+    const std::lock_guard<std::mutex> lock(refusal_mutex_);
+    last_refusal_ = reason;
+  }
+  ++refused_;  // counted in the heartbeat as malformed (and the answer as published) by syncStatus
 }
 
 void TrackerNode::onDetections(const detections_t& msg) {
   // Checked as the contract says (levels, classes, boxes inside the image); a bad one throws and is
   // counted as malformed by the LCM node.
   const detector::FrameDetections d = detector::fromDetectionsMessage(msg);
+  // The book keeps the answers with the highest seq: ones far ahead of every frame heard (forged, or from
+  // another run) would push out the real ones waiting for their frames.
+  if (d.seq > newest_frame_seq_ + static_cast<int64_t>(book_.capacity()))
+    throw std::runtime_error("answer for frame " + std::to_string(d.seq) +
+                             ", far ahead of the newest frame " + std::to_string(newest_frame_seq_));
   FrameBoxes boxes;
   boxes.utime = d.utime;
   boxes.usable = d.skipped.empty();
@@ -112,6 +142,14 @@ void TrackerNode::syncStatus() {
   received_reported_ = received;
   dropped_reported_ = dropped;
   lost_reported_ = lost;
+  const int64_t refused = refused_.load();
+  if (refused != refused_reported_) {
+    ctx_.status.malformed(refused - refused_reported_);
+    ctx_.status.published(refused - refused_reported_);
+    refused_reported_ = refused;
+    const std::lock_guard<std::mutex> lock(refusal_mutex_);
+    ctx_.status.setMessage(last_refusal_);
+  }
 }
 
 void TrackerNode::run(double idle_exit_s) {
@@ -136,7 +174,8 @@ void TrackerNode::run(double idle_exit_s) {
   if (tracker_) tracker_->finish();
   log::info("tracked ", timing_.count(), " frames, ", lost_, " lost, ", degraded_, " degraded (fewer than ",
             policy_.degraded_inliers, " inliers); ", lost_before_.load(), " frame(s) never arrived, ",
-            queue_.dropped(), " dropped while busy, ", refused_.load(), " refused; tracking ",
+            queue_.dropped(), " dropped while busy, ", refused_.load(), " refused, ", stream_.repeats(),
+            " resent by capture (", repeats_answered_.load(), " answered again); tracking ",
             timing_.summary());
 }
 
@@ -144,17 +183,18 @@ void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
   ctx_.status.malformed();
   ctx_.status.setMessage(reason);
   log::warn(reason, "; skipped");
-  ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));  // answered all the same
+  const slam_pose_t answer = toSkippedPoseMessage(msg, reason);
+  last_pose_.remember(answer);
+  ctx_.lcm.publish(channels_.pose, answer);  // answered all the same
   ctx_.status.published();
 }
 
 void TrackerNode::process(const Queued& frame) {
   const rgbd_frame_t& msg = frame.msg;
   const FrameStream::Verdict& verdict = frame.verdict;
-  if (!verdict.reason.empty() && verdict.ok) log::warn("frame seq ", msg.seq, ": ", verdict.reason);
+  if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. resynchronised
   if (verdict.lost_before > 0)
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
-  if (!verdict.ok) return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason);
   // The constant-velocity prediction spans one frame; after a gap (lost upstream or dropped from our queue)
   // it would point the wrong way.
   const int64_t gaps = lost_before_.load() + static_cast<int64_t>(queue_.dropped());
@@ -202,6 +242,7 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
     pose.state = slam_pose_t::STATE_DEGRADED;
     ++degraded_;
   }
+  last_pose_.remember(pose);
   ctx_.lcm.publish(channels_.pose, pose);
   ctx_.status.published();
   if (r.new_keyframe) {

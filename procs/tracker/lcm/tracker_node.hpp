@@ -7,17 +7,20 @@
 #include <atomic>
 #include <deque>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 
 #include <bmp/detections_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
+#include <bmp/slam_pose_t.hpp>
 
 #include "bmp/common/bounded_queue.hpp"
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/frame_checks.hpp"
+#include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
 #include "tracker/detection_book.hpp"
 #include "tracker/tracker.hpp"
@@ -61,8 +64,9 @@ class TrackerNode {
     rgbd_frame_t msg;
     FrameStream::Verdict verdict;
   };
-  void receive();                         // the receive thread's loop
-  void onFrame(const rgbd_frame_t& msg);  // on the receive thread
+  void receive();                                                             // the receive thread's loop
+  void onFrame(const rgbd_frame_t& msg);                                      // on the receive thread
+  void refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict);  // likewise
   void process(const Queued& frame);
   void onDetections(const detections_t& msg);
   std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg);
@@ -81,12 +85,17 @@ class TrackerNode {
   std::atomic<bool> receiving_{true};
   // The receive thread's counts, read by the main thread for the heartbeat.
   std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0};
-  int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0;
+  std::mutex refusal_mutex_;
+  std::string last_refusal_;  // guarded by refusal_mutex_
+  int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0, refused_reported_ = 0;
   FrameStream stream_;     // receive thread only
   int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked
   int64_t degraded_ = 0;   // OK poses published as DEGRADED
   DetectionPolicy policy_;
   DetectionBook book_;
+  LastAnswer<slam_pose_t> last_pose_;         // published again for a repeated frame
+  std::atomic<int64_t> repeats_answered_{0};  // repeated frames whose answer went out again
+  int64_t newest_frame_seq_ = 0;  // receive thread only: answers far beyond it name no frame of ours
   std::atomic<int64_t> detections_heard_{0};
   bool warned_no_detections_ = false;
   struct HeldKeyframe {

@@ -37,6 +37,10 @@ class FrameStream {
     bool ok = true;
     std::string reason;       // why refused (the rule), or why the stream re-synchronised; no seq
     int64_t lost_before = 0;  // frames missing between the last accepted one and this one
+    // The last accepted frame again (same seq and stamp): lockstep capture resends a frame whose answer is
+    // late, as the frame or the answer may have been lost. Not refused and not used twice: the consumer
+    // repeats its answer if it has given it, or lets the pending one go out.
+    bool repeat = false;
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits) {}
   Verdict accept(const rgbd_frame_t& msg);
@@ -45,6 +49,7 @@ class FrameStream {
   int64_t refused() const { return refused_; }
   int64_t lostBefore() const { return lost_before_; }
   int64_t resyncs() const { return resyncs_; }
+  int64_t repeats() const { return repeats_; }
 
  private:
   struct Position {
@@ -65,7 +70,7 @@ class FrameStream {
   std::optional<int64_t> seen_seq_;    // the highest plausible seq received, accepted or refused
   Position candidate_;                 // the newest out-of-order frame, which may be a restarted capture's
   int candidate_run_ = 0;
-  int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0;
+  int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0, repeats_ = 0;
 };
 
 }  // namespace bmp

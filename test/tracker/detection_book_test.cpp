@@ -1,0 +1,66 @@
+// Where detections wait for their frames: matched by seq and stamp, bounded, never blocked by a forgery.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "tracker/detection_book.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+FrameBoxes answer(int64_t utime, int boxes) {
+  FrameBoxes f;
+  f.utime = utime;
+  f.boxes.resize(static_cast<std::size_t>(boxes));
+  return f;
+}
+
+constexpr std::chrono::milliseconds kNoWait{0};
+
+TEST(DetectionBook, AnswerIsTakenOnceForItsSeqAndStamp) {
+  DetectionBook book;
+  book.add(7, answer(7000, 2));
+  EXPECT_FALSE(book.take(7, 9999, kNoWait)) << "another stamp is another frame";
+  const auto got = book.take(7, 7000, kNoWait);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->boxes.size(), 2u);
+  EXPECT_FALSE(book.take(7, 7000, kNoWait)) << "taken answers are removed";
+}
+
+// Another publisher names the frame's seq with a wrong stamp, before and after the real answer: the frame
+// still gets its own boxes.
+TEST(DetectionBook, ForgedAnswerWithTheFramesSeqDoesNotHideTheRealOne) {
+  DetectionBook book;
+  book.add(12, answer(1, 0));
+  book.add(12, answer(12000, 3));
+  book.add(12, answer(2, 0));
+  const auto got = book.take(12, 12000, kNoWait);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->boxes.size(), 3u);
+}
+
+TEST(DetectionBook, KeepsOnlyTheNewestAnswersAndCountsTheRest) {
+  DetectionBook book(4);
+  for (int64_t seq = 0; seq < 10; ++seq) book.add(seq, answer(seq * 1000, 1));
+  EXPECT_EQ(book.size(), 4u);
+  EXPECT_EQ(book.discarded(), 6);
+  EXPECT_FALSE(book.take(5, 5000, kNoWait));
+  EXPECT_TRUE(book.take(6, 6000, kNoWait));
+  EXPECT_TRUE(book.take(9, 9000, kNoWait));
+}
+
+// Lockstep waits for the frame's answer; an answer that comes while it waits ends the wait.
+TEST(DetectionBook, TakeWaitsForAnAnswerThatArrives) {
+  DetectionBook book;
+  auto waiter = std::async(std::launch::async, [&] { return book.take(3, 3000, std::chrono::seconds(30)); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  book.add(3, answer(3000, 1));
+  const auto got = waiter.get();
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->boxes.size(), 1u);
+}
+
+}  // namespace
+}  // namespace bmp::tracker
