@@ -1,9 +1,9 @@
-#include "mapper/memory_usage.hpp"
+#include "bmp/common/memory_usage.hpp"
 
 #include <fstream>
 #include <string>
 
-namespace bmp::mapper {
+namespace bmp {
 
 namespace {
 std::size_t statusField(const std::string& key) {
@@ -25,4 +25,4 @@ std::size_t peakResidentBytes() {
   return statusField("VmHWM:");
 }
 
-}  // namespace bmp::mapper
+}  // namespace bmp

@@ -1,6 +1,7 @@
 #include "tracker/tracker.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
@@ -166,7 +167,21 @@ bool Tracker::needNewKeyFrame(const Frame& frame) const {
   const bool c1b = since >= k.min_frames && mapper_->idle();
   const bool c1c = inliers < 0.25 * ref_matches || need_close;
   const bool c2 = (inliers < ratio * ref_matches || need_close) && inliers > 15;
-  return (c1a || c1b || c1c) && c2;
+  return (c1a || c1b || c1c) && c2 && !(inliers >= k.revisit_min_inliers && placeIsMapped(frame));
+}
+
+bool Tracker::placeIsMapped(const Frame& frame) const {
+  const auto& k = config_.keyframes;
+  const Eigen::Vector3d center = frame.T_world_cam().translation();
+  const Eigen::Vector3d axis = frame.T_world_cam().linear().col(2);
+  const double min_cos = std::cos(k.revisit_angle_deg * M_PI / 180.0);
+  for (const auto& kf : local_keyframes_) {
+    if (kf->bad || frame.stamp - kf->stamp < k.revisit_min_age_s) continue;
+    if ((kf->center() - center).norm() < k.revisit_distance_m &&
+        kf->T_world_cam().linear().col(2).dot(axis) > min_cos)
+      return true;
+  }
+  return false;
 }
 
 void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {

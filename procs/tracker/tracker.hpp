@@ -97,6 +97,8 @@ class Tracker {
   bool trackLocalMap(Frame& frame);
   void updateLocalMap(const Frame& frame);
   bool needNewKeyFrame(const Frame& frame) const;
+  // A keyframe of the local map already sees from about where the frame is (keyframes.revisit_*).
+  bool placeIsMapped(const Frame& frame) const;
   void insertKeyFrame(Frame& frame, TrackResult& result);
   void prepareLastFrame();
   void rememberFrame(const Frame& frame);

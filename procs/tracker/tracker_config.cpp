@@ -126,6 +126,11 @@ KeyframeOptions keyframeOptions(const Config& c) {
   readAtLeast(c, "close_tracked_max", o.close_tracked_max, 0);
   readAtLeast(c, "close_untracked_min", o.close_untracked_min, 0);
   readAtLeast(c, "new_points_min", o.new_points_min, 0);
+  readAtLeast(c, "revisit_distance_m", o.revisit_distance_m, 0.0);
+  readAtLeast(c, "revisit_angle_deg", o.revisit_angle_deg, 0.0);
+  c.check(o.revisit_angle_deg <= 180.0, "revisit_angle_deg", "must be at most 180");
+  readAtLeast(c, "revisit_min_inliers", o.revisit_min_inliers, 0);
+  readAtLeast(c, "revisit_min_age_s", o.revisit_min_age_s, 0.0);
   return o;
 }
 

@@ -69,6 +69,14 @@ struct KeyframeOptions {
   int close_tracked_max = 100;   // fewer tracked close points than this ...
   int close_untracked_min = 70;  // ... while this many close keypoints are unmatched: insert
   int new_points_min = 100;      // map points created from depth per keyframe, at least (closest first)
+  // A place mapped earlier gets no new keyframe: none while a keyframe of the local map at least
+  // revisit_min_age_s old sees from within this distance and angle and the frame still tracks this many
+  // inliers. A room revisited for hours then keeps the keyframes it has (bounded memory) instead of adding
+  // a new set on every pass; the first pass through a place is not affected.
+  double revisit_distance_m = 0.10;
+  double revisit_angle_deg = 10.0;
+  int revisit_min_inliers = 100;
+  double revisit_min_age_s = 10.0;
 };
 
 struct MappingOptions {

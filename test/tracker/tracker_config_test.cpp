@@ -87,6 +87,10 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("keyframes.close_tracked_max", k.close_tracked_max);
   put("keyframes.close_untracked_min", k.close_untracked_min);
   put("keyframes.new_points_min", k.new_points_min);
+  put("keyframes.revisit_distance_m", k.revisit_distance_m);
+  put("keyframes.revisit_angle_deg", k.revisit_angle_deg);
+  put("keyframes.revisit_min_inliers", k.revisit_min_inliers);
+  put("keyframes.revisit_min_age_s", k.revisit_min_age_s);
   const MappingOptions& m = c.mapping;
   put("mapping.threaded", m.threaded);
   put("mapping.queue_capacity", m.queue_capacity);
@@ -196,6 +200,8 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"pose_optimizer: {chi2_rgbd: 0}", "pose_optimizer.chi2_rgbd"},
       {"pose_optimizer: {young_point_weight: 0}", "pose_optimizer.young_point_weight"},
       {"keyframes: {ref_ratio: 1.5}", "keyframes.ref_ratio"},
+      {"keyframes: {revisit_angle_deg: 200}", "keyframes.revisit_angle_deg"},
+      {"keyframes: {revisit_distance_m: -1}", "keyframes.revisit_distance_m"},
       {"mapping: {queue_capacity: 0}", "mapping.queue_capacity"},
       {"mapping: {point_found_ratio: -0.1}", "mapping.point_found_ratio"},
       {"relocalization: {ransac_reprojection_px: 0}", "relocalization.ransac_reprojection_px"},

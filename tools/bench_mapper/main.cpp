@@ -16,7 +16,7 @@
 #include "capture/tum_sequence.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/mapper_config.hpp"
-#include "mapper/memory_usage.hpp"
+#include "bmp/common/memory_usage.hpp"
 
 namespace {
 
@@ -73,7 +73,10 @@ int bench(const ArgParser& args) {
   file.ignore("process");
   file.finish();
   if (args.given("pixel-step")) settings.cloud.pixel_step = static_cast<int>(args.integer("pixel-step"));
-  if (args.flag("synthetic")) settings.grid = {settings.grid.resolution_m, {0, 0, 1}, 0.1, 1.9};  // z up
+  if (args.flag("synthetic")) {  // the synthetic world: z up, floor at 0
+    settings.grid.up = {0, 0, 1};
+    settings.grid.height_max_m = 1.9;
+  }
   const int every = static_cast<int>(args.integer("every"));
   const int limit = args.given("keyframes") ? static_cast<int>(args.integer("keyframes")) : 1 << 30;
   if (every < 1) throw ArgError("--every must be at least 1");
@@ -90,15 +93,20 @@ int bench(const ArgParser& args) {
     if (loops > 1)
       std::printf("loop %d          keyframes kept %zu, merged %zu, peak resident %.0f MiB\n", loop + 1,
                   m.keyframeCount(), m.mergedCount(),
-                  static_cast<double>(mapper::peakResidentBytes()) / (1 << 20));
+                  static_cast<double>(bmp::peakResidentBytes()) / (1 << 20));
   }
   const TimingStats& t = m.integrationTimes();
   std::printf("keyframes        %zu\n", t.count());
   std::printf("integrate ms     median %.1f, p95 %.1f, max %.1f\n", t.median(), t.p95(), t.max());
   std::printf("cloud points     %zu\n", m.cloud().size());
+  if (const auto& floor = m.floor())
+    std::printf("floor            normal (%.3f %.3f %.3f), %.3f m along it, %.0f %% of the points\n",
+                floor->normal.x(), floor->normal.y(), floor->normal.z(), floor->height, 100 * floor->share);
+  else
+    std::printf("floor            none fitted (grid.floor)\n");
   std::printf("octree nodes     %zu (%.1f MiB)\n", m.occupancy().nodeCount(),
               static_cast<double>(m.occupancy().memoryBytes()) / (1 << 20));
-  std::printf("peak resident    %.0f MiB\n", static_cast<double>(mapper::peakResidentBytes()) / (1 << 20));
+  std::printf("peak resident    %.0f MiB\n", static_cast<double>(bmp::peakResidentBytes()) / (1 << 20));
   if (args.given("out"))
     std::printf("files            %zu in %s\n", mapper::writeMapFiles(args.value("out"), m).size(),
                 args.value("out").c_str());

@@ -3,12 +3,16 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
 #include "bmp/common/config.hpp"
 #include "bmp/common/config_dir.hpp"
+#include "bmp/common/memory_usage.hpp"
 #include "capture/camera_selection.hpp"
+#include "capture/looped_source.hpp"
+#include "capture/tum_sequence.hpp"
 #include "eval/ate.hpp"
 #include "tracker/tracker_settings.hpp"
 #include "tracker_offline/offline_runner.hpp"
@@ -49,7 +53,12 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   return options;
 }
 
-void printRunSummary(const OfflineResult& result) {
+// Per-frame times kept while tracking (the frames' results are not kept: long runs measure memory).
+struct FrameTimes {
+  bmp::TimingStats extract, wait;
+};
+
+void printRunSummary(const OfflineResult& result, const FrameTimes& times) {
   std::printf("frames           %d\n", result.frames);
   std::printf("frames tracked   %zu\n", result.trajectory.size());
   std::printf("frames lost      %d%s\n", result.frames_lost, result.lost_at_end ? " (lost at the end)" : "");
@@ -57,13 +66,9 @@ void printRunSummary(const OfflineResult& result) {
   std::printf("track ms median  %.2f\n", result.track_ms.median());
   std::printf("track ms p95     %.2f\n", result.track_ms.p95());
   std::printf("track ms mean    %.2f\n", result.track_ms.mean());
-  bmp::TimingStats extract, wait;
-  for (const auto& r : result.results) {
-    extract.add(r.extract_ms);
-    wait.add(r.lock_wait_ms);
-  }
-  std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", wait.median(), wait.p95());
-  std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", extract.median());
+  std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", times.wait.median(),
+              times.wait.p95());
+  std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", times.extract.median());
 }
 
 // Each associated frame's position error after the global alignment: where the trajectory went wrong.
@@ -89,6 +94,56 @@ void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
   if (args.given("errors")) writeErrors(args.value("errors"), ate);
 }
 
+// --passes N: the folder played N times as one forward stream (each pass's stamps shifted by the sequence's
+// period, as bmp-capture --loop does), the ground truth repeated to match. After each pass a line with the
+// map's size and this process's resident memory: the map must stop growing once the room is known.
+struct PassedFrames {
+  FrameProvider frames;
+  bmp::Trajectory groundtruth;
+};
+
+PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last) {
+  const std::string dir = args.value("dataset");
+  const int start = static_cast<int>(args.integer("start"));
+  const bool masks = args.flag("oracle-masks");
+  const long long passes = args.integer("passes");
+  if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
+  PassedFrames out;
+  bmp::Trajectory one_pass;
+  FrameProvider first = tumFolderFrames(dir, start, &one_pass, masks);
+  // The period, from the stamps of one pass read without its images.
+  const auto index = bmp::capture::indexSequence(dir);
+  const double period =
+      index.frames.empty()
+          ? 1.0
+          : bmp::capture::loopPeriod(index.frames.front().rgb_stamp, index.frames.back().rgb_stamp,
+                                     static_cast<int64_t>(index.frames.size()));
+  for (long long p = 0; p < passes; ++p)
+    for (const auto& pose : one_pass) {
+      auto shifted = pose;
+      shifted.stamp += static_cast<double>(p) * period;
+      out.groundtruth.push_back(shifted);
+    }
+  auto current = std::make_shared<FrameProvider>(std::move(first));
+  auto pass = std::make_shared<long long>(0);
+  out.frames = [=]() -> std::optional<OfflineFrame> {
+    for (;;) {
+      if (auto frame = (*current)()) {
+        frame->stamp += static_cast<double>(*pass) * period;
+        return frame;
+      }
+      if (passes > 1)
+        std::printf("pass %4lld  keyframes %5d  map points %7d  resident %.1f MiB\n", *pass + 1,
+                    last->num_keyframes, last->num_map_points,
+                    static_cast<double>(bmp::residentBytes()) / (1 << 20));
+      std::fflush(stdout);
+      if (++*pass >= passes) return std::nullopt;
+      *current = tumFolderFrames(dir, start, nullptr, masks);
+    }
+  };
+  return out;
+}
+
 }  // namespace
 
 int runBenchTracker(const bmp::ArgParser& args) {
@@ -97,16 +152,23 @@ int runBenchTracker(const bmp::ArgParser& args) {
       bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
   std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
   Tracker tracker(selected.intrinsics, loadConfig(args));
-  bmp::Trajectory groundtruth;
-  const OfflineResult result =
-      runOffline(tracker,
-                 tumFolderFrames(args.value("dataset"), static_cast<int>(args.integer("start")), &groundtruth,
-                                 args.flag("oracle-masks")),
-                 offlineOptions(args));
+  auto last = std::make_shared<TrackResult>();
+  const PassedFrames input = passedFrames(args, last);
+  OfflineOptions options = offlineOptions(args);
+  auto times = std::make_shared<FrameTimes>();
+  options.keep_results = false;
+  options.on_result = [report = options.on_result, last, times](const TrackResult& r) {
+    times->extract.add(r.extract_ms);
+    times->wait.add(r.lock_wait_ms);
+    *last = r;
+    report(r);
+  };
+  const OfflineResult result = runOffline(tracker, input.frames, options);
+  const bmp::Trajectory& groundtruth = input.groundtruth;
   if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
   if (args.given("keyframe-trajectory"))
     bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
-  printRunSummary(result);
+  printRunSummary(result, *times);
   printAte(args, result.trajectory, groundtruth);
   return 0;
 }
@@ -119,6 +181,9 @@ void addBenchTrackerOptions(ArgParser& args) {
                  bmp::configDir() + "/tracker.yaml");
   args.addOption("frames", "N", "track at most N frames");
   args.addOption("start", "N", "skip the first N associated frames", "0");
+  args.addOption("passes", "N",
+                 "play the folder N times, as bmp-capture --loop does (map size and memory after each pass)",
+                 "1");
   args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
   args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
   args.addOption("errors", "FILE",

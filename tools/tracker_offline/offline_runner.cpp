@@ -27,7 +27,7 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     out.lost_at_end = r.state == TrackingState::kLost;
     ++out.frames;
     if (options.on_result) options.on_result(r);
-    out.results.push_back(std::move(r));
+    if (options.keep_results) out.results.push_back(std::move(r));
   }
   tracker.finish();
   out.trajectory = tracker.trajectory();

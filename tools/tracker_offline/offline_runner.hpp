@@ -26,6 +26,7 @@ using FrameProvider = std::function<std::optional<OfflineFrame>()>;
 struct OfflineOptions {
   int max_frames = -1;                                // <0: all
   std::function<void(const TrackResult&)> on_result;  // e.g. progress output
+  bool keep_results = true;  // false: OfflineResult::results stays empty (long runs that measure memory)
 };
 
 struct OfflineResult {

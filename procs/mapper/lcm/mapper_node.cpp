@@ -1,12 +1,14 @@
 #include "mapper/lcm/mapper_node.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/log.hpp"
+#include "bmp/common/memory_usage.hpp"
 #include "mapper/lcm/mapper_messages.hpp"
 #include "mapper/map_files.hpp"
-#include "mapper/memory_usage.hpp"
 
 namespace bmp::mapper {
 
@@ -87,6 +89,7 @@ void MapperNode::publishDue(double now) {
     last_grid_s_ = now;
     grid_dirty_ = false;
     ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_.grid(), utime));
+    reportFloor();
     ctx_.lcm.publish(process_.octomap_channel, toOctomapMessage(mapper_.occupancy(), utime));
     ctx_.status.published(2);
   }
@@ -97,6 +100,21 @@ void MapperNode::publishDue(double now) {
     ctx_.lcm.publish(process_.cloud_channel, toCloudMessage(mapper_.viewerCloud(), utime, max_points));
     ctx_.status.published();
   }
+}
+
+void MapperNode::reportFloor() {
+  const auto& floor = mapper_.floor();
+  if (floor.has_value() == floor_reported_) return;
+  floor_reported_ = floor.has_value();
+  if (!floor) {
+    log::warn("floor lost: the grid's band is measured from grid.floor.height_m again");
+    return;
+  }
+  const auto& up = mapper_.settings().grid.up;
+  const double tilt =
+      std::acos(std::clamp(floor->normal.dot(Eigen::Vector3d(up[0], up[1], up[2])), -1.0, 1.0));
+  log::info("floor fitted: ", floor->height, " m along its normal, ", tilt * 180.0 / M_PI,
+            " deg from grid.up, ", static_cast<int>(100 * floor->share), " % of the points");
 }
 
 void MapperNode::save(const std::string& why) {
@@ -118,7 +136,7 @@ std::string MapperNode::statusLine() const {
       line, sizeof(line),
       "keyframes %zu (+%zu merged), points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
       mapper_.keyframeCount(), mapper_.mergedCount(), mapper_.pointCount(), mapper_.occupancy().nodeCount(),
-      static_cast<double>(residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
+      static_cast<double>(bmp::residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
   return last_warning_.empty() ? line : std::string(line) + "; last warning: " + last_warning_;
 }
 
