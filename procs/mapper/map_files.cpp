@@ -30,7 +30,8 @@ std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper) {
   const PointList& cloud = mapper.cloud();
   const OccupancyGrid2D grid = mapper.grid();
   const MapperSettings& s = mapper.settings();
-  const PlaneFrame frame = PlaneFrame::fromUp(s.grid.up);
+  const GridSettings grounded = mapper.groundedGrid();
+  const PlaneFrame frame = PlaneFrame::fromUp(grounded.up);
   std::vector<std::string> written;
   const auto put = [&](const std::string& name, const std::string& content) {
     const std::string path = (fs::path(dir) / name).string();
@@ -42,8 +43,8 @@ std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper) {
   put("map.bt", mapper.occupancy().binaryFile());
   put("occupancy.pgm", encodePgm(grid));
   put("occupancy.yaml", encodeMapYaml(grid, "occupancy.pgm"));
-  put("cloud_top.png", png(renderTopView(cloud, frame, s.grid, s.pictures)));
-  put("cloud_oblique.png", png(renderObliqueView(cloud, frame, s.grid, s.pictures)));
+  put("cloud_top.png", png(renderTopView(cloud, frame, grounded, s.pictures)));
+  put("cloud_oblique.png", png(renderObliqueView(cloud, frame, grounded, s.pictures)));
   put("occupancy.png", png(renderGrid(grid, s.pictures.grid_cell_px)));
   return written;
 }

@@ -34,6 +34,7 @@ Mapper::Mapper(const MapperSettings& settings) : settings_(settings), octree_(se
 Mapper::~Mapper() = default;
 
 IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
+  ++map_revision_;
   Stopwatch watch;
   IntegrateResult result;
   result.reason = checkKeyframe(kf);
@@ -65,6 +66,7 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
 }
 
 PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
+  ++map_revision_;
   PoseUpdateResult result;
   for (const auto& u : updates) {
     const auto it = keyframes_.find(u.id);
@@ -177,6 +179,19 @@ const PointList& Mapper::cloud() {
     if (probability < 0 || probability >= below) output_cloud_.push_back(p);
   }
   return output_cloud_;
+}
+
+const std::optional<FloorPlane>& Mapper::floor() {
+  if (settings_.grid.floor.mode == FloorMode::kFit && floor_revision_ != map_revision_) {
+    const auto& up = settings_.grid.up;
+    floor_ = fitFloor(stitched(), Eigen::Vector3d(up[0], up[1], up[2]), settings_.grid.floor);
+    floor_revision_ = map_revision_;
+  }
+  return floor_;
+}
+
+GridSettings Mapper::groundedGrid() {
+  return bmp::mapper::groundedGrid(settings_.grid, floor());
 }
 
 const PointList& Mapper::stitched() {

@@ -11,6 +11,7 @@
 
 #include "bmp/common/se3.hpp"
 #include "bmp/common/timing.hpp"
+#include "mapper/floor_plane.hpp"
 #include "mapper/keyframe_input.hpp"
 #include "mapper/mapper_settings.hpp"
 #include "mapper/occupancy_grid.hpp"
@@ -62,7 +63,12 @@ class Mapper {
   const PointList& cloud();
   // The cloud down-sampled to viewer_voxel_m.
   PointList viewerCloud();
-  OccupancyGrid2D grid() const { return octree_.project(settings_.grid); }
+  // The grid on the floor (fitted again when keyframes came or moved since the last fit).
+  OccupancyGrid2D grid() { return octree_.project(groundedGrid()); }
+  // settings.grid with up and the height band in the world, measured from the floor.
+  GridSettings groundedGrid();
+  // The fitted floor, or nullopt (none found yet, or floor.mode fixed).
+  const std::optional<FloorPlane>& floor();
   const OccupancyMap& occupancy() const { return octree_; }
 
   // Points in the stitched cloud, some perhaps still waiting for the voxel filter (for status lines).
@@ -107,6 +113,9 @@ class Mapper {
   double last_rebuild_s_ = -1e300;
   int rebuilds_ = 0;
   TimingStats integration_ms_;
+  std::optional<FloorPlane> floor_;
+  int64_t floor_revision_ = -1;  // map_revision_ when floor_ was fitted
+  int64_t map_revision_ = 0;     // counts integrations and pose updates
 };
 
 }  // namespace bmp::mapper

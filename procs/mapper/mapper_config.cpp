@@ -87,8 +87,29 @@ RebuildSettings readRebuild(const Config& c) {
   return s;
 }
 
+FloorSettings readFloor(const Config& c) {
+  FloorSettings s;
+  const std::string mode = c.get<std::string>("mode", s.mode == FloorMode::kFit ? "fit" : "fixed");
+  c.check(mode == "fit" || mode == "fixed", "mode", "must be fit or fixed");
+  s.mode = mode == "fit" ? FloorMode::kFit : FloorMode::kFixed;
+  read(c, "height_m", s.height_m);
+  c.check(std::isfinite(s.height_m), "height_m", "must be finite");
+  read(c, "max_tilt_deg", s.max_tilt_deg);
+  c.check(s.max_tilt_deg > 0 && s.max_tilt_deg < 90, "max_tilt_deg", "must be in (0, 90) degrees");
+  read(c, "inlier_m", s.inlier_m);
+  positive(c, "inlier_m", s.inlier_m);
+  read(c, "min_share", s.min_share);
+  c.check(s.min_share > 0 && s.min_share <= 1, "min_share", "must be in (0, 1]");
+  read(c, "iterations", s.iterations);
+  c.check(s.iterations >= 1, "iterations", "must be at least 1");
+  read(c, "max_points", s.max_points);
+  c.check(s.max_points >= 100, "max_points", "must be at least 100");
+  return s;
+}
+
 GridSettings readGrid(const Config& c) {
   GridSettings s;
+  s.floor = readFloor(c.section("floor"));
   read(c, "resolution_m", s.resolution_m);
   read(c, "height_min_m", s.height_min_m);
   read(c, "height_max_m", s.height_max_m);

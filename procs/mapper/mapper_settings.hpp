@@ -47,14 +47,28 @@ struct MergeSettings {
   double max_rotation_deg = 5.0;
 };
 
-// The 2-D occupancy grid: the octree between two heights, projected along `up` onto the floor plane.
-// Heights are measured along `up` from the world origin. The tracker's world is its first camera's frame
-// (x right, y down, z forward), so the default up is -y and heights are relative to that camera's centre.
+// The floor the grid stands on. The tracker's world is its first camera's frame (x right, y down, z
+// forward): `up` is then only a guess (-y; a camera looking down tilts it), so by default the floor is
+// fitted in the cloud: the lowest plane within max_tilt_deg of up that holds at least min_share of the
+// points. Its normal becomes up, its height the zero of the grid's height band.
+enum class FloorMode { kFit, kFixed };
+struct FloorSettings {
+  FloorMode mode = FloorMode::kFit;
+  double height_m = -1.0;  // fixed floor, or the fallback while none is found: along up from the origin
+  double max_tilt_deg = 30.0;
+  double inlier_m = 0.03;   // a point this close to a plane supports it
+  double min_share = 0.05;  // of the cloud's points, for a plane to count as the floor
+  int iterations = 400;     // RANSAC samples (deterministic: a fixed seed)
+  int max_points = 20000;   // the cloud is sub-sampled to this many points for the fit
+};
+
+// The 2-D occupancy grid: the octree between two heights above the floor, projected along up onto it.
 struct GridSettings {
   double resolution_m = 0.05;
   std::array<double, 3> up{0.0, -1.0, 0.0};  // world direction of "up"; normalised when read
-  double height_min_m = -1.0;                // the band of heights that can block a robot
-  double height_max_m = 0.5;
+  double height_min_m = 0.1;                 // the band above the floor that can block a robot
+  double height_max_m = 1.5;
+  FloorSettings floor;
 };
 
 // Pictures written beside the map files.

@@ -64,6 +64,8 @@ TEST(MapperConfig, RulesNameFileAndKey) {
       {"mapper:\n  rebuild:\n    min_interval_s: -1\n", "mapper.rebuild.min_interval_s"},
       {"mapper:\n  rebuild:\n    min_rotation_deg: 200\n", "mapper.rebuild.min_rotation_deg"},
       {"mapper:\n  grid:\n    up: [0, 0, 0]\n", "mapper.grid.up"},
+      {"mapper:\n  grid:\n    floor:\n      mode: guess\n", "mapper.grid.floor.mode"},
+      {"mapper:\n  grid:\n    floor:\n      max_tilt_deg: 95\n", "mapper.grid.floor.max_tilt_deg"},
       {"mapper:\n  grid:\n    up: [0, 1]\n", "mapper.grid.up"},
       {"mapper:\n  grid:\n    height_max_m: -2\n", "mapper.grid.height_max_m"},
       {"mapper:\n  grid:\n    resolution_m: 0.02\n", "mapper.grid.resolution_m"},  // finer than the octree

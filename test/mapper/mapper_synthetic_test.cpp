@@ -65,7 +65,7 @@ struct SceneRun {
 
 MapperSettings syntheticSettings() {
   MapperSettings s;
-  s.grid.up = {0, 0, 1};  // the synthetic world: z up, floor at 0
+  s.grid.up = {0, 0, 1};  // the synthetic world: z up, floor at 0 (fitted, as by default)
   s.grid.height_min_m = 0.1;
   s.grid.height_max_m = 1.9;
   return s;
@@ -116,6 +116,7 @@ class SyntheticMap : public ::testing::Test {
   void checkSpaceTheCameraSawIsFree();
   void checkNoVoxelOnAMoversPathIsOccupied();
   void checkFurnitureIsOccupiedInTheGrid();
+  void checkTheFloorIsFitted();
 
   static std::unique_ptr<capture::SyntheticScene> scene_;
   static std::vector<capture::SyntheticFrame> frames_;
@@ -246,6 +247,26 @@ void SyntheticMap::checkFurnitureIsOccupiedInTheGrid() {
   EXPECT_GT(static_cast<double>(occupied) / static_cast<double>(known), 0.9);
 }
 
+// The floor is at z = 0 with z up; furniture tops and the table are planes near up as well, with fewer
+// points and higher: the lowest supported plane is the floor.
+void SyntheticMap::checkTheFloorIsFitted() {
+  const auto& floor = masked_->floor();
+  ASSERT_TRUE(floor.has_value());
+  const double tilt_deg = std::acos(std::min(1.0, floor->normal.z())) * 180.0 / M_PI;
+  std::printf("fitted floor: tilt %.2f deg, height %.3f m, share %.2f\n", tilt_deg, floor->height,
+              floor->share);
+  EXPECT_LT(tilt_deg, 1.0);
+  EXPECT_NEAR(floor->height, 0.0, 0.02);
+  // A guess 20 degrees off (a camera looking down) still finds the same floor.
+  const Eigen::Vector3d guess(0, std::sin(20 * M_PI / 180), std::cos(20 * M_PI / 180));
+  const auto from_guess = fitFloor(masked_->cloud(), guess, masked_->settings().grid.floor);
+  ASSERT_TRUE(from_guess.has_value());
+  EXPECT_LT(std::acos(std::min(1.0, from_guess->normal.z())) * 180.0 / M_PI, 1.0);
+  EXPECT_NEAR(from_guess->height, 0.0, 0.02);
+  const GridSettings grounded = masked_->groundedGrid();
+  EXPECT_NEAR(grounded.height_min_m, floor->height + 0.1, 1e-9);
+}
+
 TEST_F(SyntheticMap, MaskedMapHoldsTheStaticSceneAndNothingOfTheMovers) {
   {
     SCOPED_TRACE("walls, floor and furniture in the cloud and occupied");
@@ -262,6 +283,10 @@ TEST_F(SyntheticMap, MaskedMapHoldsTheStaticSceneAndNothingOfTheMovers) {
   {
     SCOPED_TRACE("furniture is occupied in the grid");
     checkFurnitureIsOccupiedInTheGrid();
+  }
+  {
+    SCOPED_TRACE("the grid stands on the floor fitted in the cloud, also from a poor guess of up");
+    checkTheFloorIsFitted();
   }
 }
 

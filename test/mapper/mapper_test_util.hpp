@@ -42,6 +42,12 @@ inline MapperSettings testSettings() {
   s.rebuild.min_interval_s = 5.0;
   s.cloud.max_depth_m = 6.0;
   s.octomap.max_range_m = 6.0;
+  // The scenes here are walls in front of the camera, no floor: a fixed one 1 m below the camera, the band
+  // up to 0.5 m above the camera.
+  s.grid.floor.mode = FloorMode::kFixed;
+  s.grid.floor.height_m = -1.0;
+  s.grid.height_min_m = 0.0;
+  s.grid.height_max_m = 1.5;
   return s;
 }
 

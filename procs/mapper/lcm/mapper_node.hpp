@@ -29,6 +29,7 @@ class MapperNode {
   void onKeyframe(const keyframe_t& msg);
   void onPoses(const keyframe_poses_t& msg);
   void publishDue(double now_s);
+  void reportFloor();  // logs when the floor is first fitted (or lost)
   void refuse(const std::string& what);
   std::string statusLine() const;
 
@@ -41,6 +42,7 @@ class MapperNode {
   double last_grid_s_ = -1e300, last_cloud_s_ = -1e300, last_save_s_ = 0, last_status_s_ = -1e300;
   bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
   std::string last_warning_;
+  bool floor_reported_ = false;
 };
 
 }  // namespace bmp::mapper
