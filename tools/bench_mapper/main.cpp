@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bmp/common/config.hpp"
+#include "bmp/common/memory_usage.hpp"
 #include "bmp/common/tool_main.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
@@ -16,7 +17,6 @@
 #include "capture/tum_sequence.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/mapper_config.hpp"
-#include "bmp/common/memory_usage.hpp"
 
 namespace {
 
