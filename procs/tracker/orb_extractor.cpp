@@ -14,7 +14,6 @@ namespace {
 constexpr int kPatchRadius = 15;    // orientation patch
 constexpr int kPatternRadius = 13;  // test pairs stay inside this circle under any rotation
 constexpr int kBorder = 19;         // corners nearer the edge cannot be described
-constexpr int kDescriptorBytes = 32;
 constexpr double kPatchSize = 31.0;
 
 // Uniform in [0, 1) from the raw generator: std distributions differ between standard libraries.
@@ -30,17 +29,6 @@ ScalePyramid::ScalePyramid(int n, double f)
     sigma2[i] = scale[i] * scale[i];
     inv_sigma2[i] = 1.0 / sigma2[i];
   }
-}
-
-int hamming(const uint8_t* a, const uint8_t* b) {
-  int d = 0;
-  for (int i = 0; i < kDescriptorBytes; i += 8) {
-    uint64_t x, y;
-    std::memcpy(&x, a + i, 8);
-    std::memcpy(&y, b + i, 8);
-    d += __builtin_popcountll(x ^ y);
-  }
-  return d;
 }
 
 OrbExtractor::OrbExtractor(const OrbOptions& options)
