@@ -69,6 +69,7 @@ std::vector<FrameResult> DetectionWorker::takeResults() {
 void DetectionWorker::run() {
   while (auto job = queue_.pop()) {
     if (stopping_) break;
+    busy_ = true;
     FrameResult result;
     try {
       result = processFrame(detector_, *job);
@@ -82,6 +83,7 @@ void DetectionWorker::run() {
       std::lock_guard<std::mutex> lock(results_mutex_);
       results_.push_back(std::move(result));
     }
+    busy_ = false;
     if (on_result_) on_result_();
   }
 }

@@ -59,8 +59,8 @@ class DetectionWorker {
   std::size_t submit(FrameJob job);
   // Results finished since the last call, in processing order.
   std::vector<FrameResult> takeResults();
-  // Frames waiting for the worker (not counting the one in progress).
-  std::size_t pending() const { return queue_.size(); }
+  // Frames waiting for the worker, and the one in progress: not answered if the process stops now.
+  std::size_t unfinished() const { return queue_.size() + (busy_ ? 1 : 0); }
 
  private:
   void run();
@@ -70,7 +70,8 @@ class DetectionWorker {
   std::mutex results_mutex_;
   std::vector<FrameResult> results_;
   std::atomic<bool> stopping_{false};
-  std::thread thread_;  // last: starts after everything it uses exists
+  std::atomic<bool> busy_{false};  // a frame taken from the queue whose result is not yet in results_
+  std::thread thread_;             // last: starts after everything it uses exists
 };
 
 }  // namespace bmp::detector

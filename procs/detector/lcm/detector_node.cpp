@@ -103,11 +103,16 @@ int DetectorNode::run() {
     publishResults();
     ctx_.status.tick();
   }
+  // Received but not answered: waiting, or in progress when the stop came. Counted as dropped, so every frame
+  // received is accounted for (processed, dropped, or refused as malformed).
+  publishResults();  // what finished since the last wake-up
+  const std::size_t unfinished = worker_.unfinished();
+  ctx_.status.dropped(static_cast<int64_t>(unfinished));
   log::info("processed ", ctx_.status.processedCount(), " of ", ctx_.status.receivedCount(),
-            " frame(s), dropped ", ctx_.status.droppedCount(), ", malformed ", ctx_.status.malformedCount(),
-            ", not yet processed at exit ", worker_.pending(), ", resent by capture ", stream_.repeats(),
-            " (", repeats_answered_, " answered again); per frame ",
-            frame_times_.empty() ? std::string("-") : frame_times_.summary());
+            " frame(s), dropped ", ctx_.status.droppedCount(), " (", unfinished,
+            " of them not yet processed at exit), malformed ", ctx_.status.malformedCount(),
+            ", resent by capture ", stream_.repeats(), " (", repeats_answered_,
+            " answered again); per frame ", frame_times_.empty() ? std::string("-") : frame_times_.summary());
   return 0;
 }
 

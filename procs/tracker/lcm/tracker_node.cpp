@@ -171,12 +171,16 @@ void TrackerNode::run(double idle_exit_s) {
   receiving_ = false;
   if (receiver_.joinable()) receiver_.join();  // its counts are final from here
   syncStatus();
+  // Received but still queued when the stop came: counted as dropped, so every frame received is accounted
+  // for (tracked, dropped, or refused).
+  const std::size_t unfinished = queue_.size();
+  ctx_.status.dropped(static_cast<int64_t>(unfinished));
   if (tracker_) tracker_->finish();
   log::info("tracked ", timing_.count(), " frames, ", lost_, " lost, ", degraded_, " degraded (fewer than ",
             policy_.degraded_inliers, " inliers); ", lost_before_.load(), " frame(s) never arrived, ",
-            queue_.dropped(), " dropped while busy, ", refused_.load(), " refused, ", stream_.repeats(),
-            " resent by capture (", repeats_answered_.load(), " answered again); tracking ",
-            timing_.summary());
+            queue_.dropped(), " dropped while busy, ", unfinished, " still queued at exit, ", refused_.load(),
+            " refused, ", stream_.repeats(), " resent by capture (", repeats_answered_.load(),
+            " answered again); tracking ", timing_.summary());
 }
 
 void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
