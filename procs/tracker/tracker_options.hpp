@@ -75,7 +75,7 @@ struct KeyframeOptions {
   // a new set on every pass; the first pass through a place is not affected.
   double revisit_distance_m = 0.10;
   double revisit_angle_deg = 10.0;
-  int revisit_min_inliers = 100;
+  int revisit_min_inliers = 50;
   double revisit_min_age_s = 10.0;
 };
 
