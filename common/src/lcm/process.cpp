@@ -1,5 +1,6 @@
 #include "bmp/lcm/process.hpp"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -107,7 +108,23 @@ void finishConfig(const ProcessContext& context) {
   for (const auto& line : context.config.effectiveValues()) log::info("  config ", line);
 }
 
+namespace {
+
+// Frames and images are megabyte buffers, allocated and freed many times a second on several threads. glibc
+// raises its mmap threshold each time such a buffer is freed, and from then on they come from the threads'
+// heaps, whose fragments are not given back: the tracker's resident memory crept up about 2 MiB a minute in
+// a real-time soak (+14 % from minute 5 to 10). A fixed threshold keeps them mapped and returned when freed
+// (the same soak: +1 % from minute 5 to 7).
+constexpr int kMmapThresholdBytes = 256 * 1024;
+
+void keepLargeBuffersMapped() {
+  if (mallopt(M_MMAP_THRESHOLD, kMmapThresholdBytes) != 1) log::warn("mallopt(M_MMAP_THRESHOLD) failed");
+}
+
+}  // namespace
+
 int runProcess(int argc, char** argv, const ProcessSpec& spec) {
+  keepLargeBuffersMapped();
   ArgParser args(spec.name, spec.summary);
   const std::string default_config =
       spec.default_config.empty() ? "" : configDir() + "/" + spec.default_config;
