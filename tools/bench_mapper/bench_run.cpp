@@ -1,0 +1,128 @@
+#include "bench_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bmp/common/config.hpp"
+#include "bmp/common/memory_usage.hpp"
+#include "bmp/common/tool_main.hpp"
+#include "bmp/lcm/process.hpp"
+#include "capture/camera_selection.hpp"
+#include "capture/synthetic_scene.hpp"
+#include "capture/tum_sequence.hpp"
+#include "mapper/map_files.hpp"
+#include "mapper/mapper_config.hpp"
+
+namespace bmp::mapper {
+
+namespace {
+
+// The ground-truth pose nearest in time (within 0.02 s), or false.
+bool poseAt(const Trajectory& gt, double stamp, SE3& T) {
+  double best = 0.02;
+  bool found = false;
+  for (const auto& p : gt) {
+    if (std::abs(p.stamp - stamp) <= best) {
+      best = std::abs(p.stamp - stamp);
+      T = p.T_world_cam;
+      found = true;
+    }
+  }
+  return found;
+}
+
+// One pass over the sequence; loop numbers the pass, so a replayed frame gets a new keyframe id.
+void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m) {
+  const capture::SequenceIndex index = capture::indexSequence(args.value("dataset"));
+  if (index.groundtruth.empty()) throw std::runtime_error(args.value("dataset") + ": no groundtruth.txt");
+  const CameraIntrinsics camera =
+      capture::selectCamera(args.value("dataset"), args.value("camera"), configDir() + "/cameras").intrinsics;
+  int fed = 0;
+  for (std::size_t i = 0; i < index.frames.size() && fed < limit; i += every) {
+    KeyframeInput kf;
+    kf.id = static_cast<int64_t>(loop) * static_cast<int64_t>(index.frames.size()) + static_cast<int64_t>(i);
+    kf.camera = camera;
+    if (!poseAt(index.groundtruth, index.frames[i].rgb_stamp, kf.T_world_cam)) continue;
+    kf.color = cv::imread(index.frames[i].rgb_path, cv::IMREAD_COLOR);
+    kf.depth = cv::imread(index.frames[i].depth_path, cv::IMREAD_UNCHANGED);
+    const IntegrateResult r = m.integrate(kf);
+    if (!r.ok) std::fprintf(stderr, "frame %zu: %s\n", i, r.reason.c_str());
+    fed += r.ok;
+  }
+}
+
+void feedSynthetic(int every, int limit, int loop, Mapper& m) {
+  const capture::SyntheticScene scene{capture::SyntheticSceneConfig{}};
+  int fed = 0;
+  for (int i = 0; i < scene.numFrames() && fed < limit; i += every, ++fed) {
+    const capture::SyntheticFrame f = scene.render(i);
+    const int64_t id = static_cast<int64_t>(loop) * scene.numFrames() + i;
+    KeyframeInput kf{id, f.stamp, f.T_world_cam, scene.camera(), f.bgr, f.depth, f.mask};
+    m.integrate(kf);
+  }
+}
+
+}  // namespace
+
+int runBenchMapper(const ArgParser& args) {
+  const Config file = Config::fromFile(args.value("config"));
+  MapperSettings settings = mapperSettingsFromConfig(file.section("mapper"));
+  file.ignore("process");
+  file.finish();
+  if (args.given("pixel-step")) settings.cloud.pixel_step = static_cast<int>(args.integer("pixel-step"));
+  if (args.flag("synthetic")) {  // the synthetic world: z up, floor at 0
+    settings.grid.up = {0, 0, 1};
+    settings.grid.height_max_m = 1.9;
+  }
+  const int every = static_cast<int>(args.integer("every"));
+  const int limit = args.given("keyframes") ? static_cast<int>(args.integer("keyframes")) : 1 << 30;
+  if (every < 1) throw ArgError("--every must be at least 1");
+  const int loops = static_cast<int>(args.integer("loops"));
+  if (loops < 1) throw ArgError("--loops must be at least 1");
+  if (!args.flag("synthetic") && !args.given("dataset")) throw ArgError("give --dataset DIR or --synthetic");
+  Mapper m(settings);
+  // Each pass maps the same room again: with bounded memory the peak levels off after the first.
+  for (int loop = 0; loop < loops; ++loop) {
+    if (args.flag("synthetic"))
+      feedSynthetic(every, limit, loop, m);
+    else
+      feedTum(args, every, limit, loop, m);
+    if (loops > 1)
+      std::printf("loop %d          keyframes kept %zu, merged %zu, peak resident %.0f MiB\n", loop + 1,
+                  m.keyframeCount(), m.mergedCount(),
+                  static_cast<double>(bmp::peakResidentBytes()) / (1 << 20));
+  }
+  const TimingStats& t = m.integrationTimes();
+  std::printf("keyframes        %zu\n", t.count());
+  std::printf("integrate ms     median %.1f, p95 %.1f, max %.1f\n", t.median(), t.p95(), t.max());
+  std::printf("cloud points     %zu\n", m.cloud().size());
+  if (const auto& floor = m.floor())
+    std::printf("floor            normal (%.3f %.3f %.3f), %.3f m along it, %.0f %% of the points\n",
+                floor->normal.x(), floor->normal.y(), floor->normal.z(), floor->height, 100 * floor->share);
+  else
+    std::printf("floor            none fitted (grid.floor)\n");
+  std::printf("octree nodes     %zu (%.1f MiB)\n", m.occupancy().nodeCount(),
+              static_cast<double>(m.occupancy().memoryBytes()) / (1 << 20));
+  std::printf("peak resident    %.0f MiB\n", static_cast<double>(bmp::peakResidentBytes()) / (1 << 20));
+  if (args.given("out"))
+    std::printf("files            %zu in %s\n", writeMapFiles(args.value("out"), m).size(),
+                args.value("out").c_str());
+  return 0;
+}
+
+void addBenchMapperOptions(ArgParser& args) {
+  args.addOption("dataset", "DIR", "TUM-format folder with groundtruth.txt (keyframes get no masks)");
+  args.addFlag("synthetic", "use the built-in synthetic scene instead (ground-truth masks)");
+  args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else by the folder's name");
+  args.addOption("every", "N", "a keyframe every N frames", "10");
+  args.addOption("keyframes", "N", "stop after N keyframes");
+  args.addOption("pixel-step", "N", "override mapper.cloud.pixel_step");
+  args.addOption("loops", "N", "feed the keyframes N times (the same room mapped over and over)", "1");
+  args.addOption("config", "FILE", "mapper YAML", configDir() + "/mapper.yaml");
+  args.addOption("out", "DIR", "also write the map files here");
+}
+
+}  // namespace bmp::mapper

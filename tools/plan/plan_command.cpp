@@ -1,0 +1,76 @@
+#include "plan_command.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bmp/common/atomic_file.hpp"
+#include "bmp/common/tool_main.hpp"
+#include "plan/live_grid.hpp"
+#include "plan/path_output.hpp"
+
+namespace bmp::plan {
+
+namespace {
+
+Eigen::Vector2d point(const ArgParser& args, const std::string& name) {
+  std::istringstream in(args.value(name));
+  double x = 0, y = 0;
+  char comma = 0;
+  if (!(in >> x >> comma >> y) || comma != ',') throw ArgError("--" + name + " must be X,Y in metres");
+  return {x, y};
+}
+
+}  // namespace
+
+int runPlan(const ArgParser& args) {
+  if (args.given("map") == args.flag("live")) throw ArgError("give either --map FILE or --live");
+  if (!args.given("from") || !args.given("to")) throw ArgError("--from and --to are required");
+  PlanOptions options;
+  options.robot_radius_m = args.number("robot-radius");
+  if (args.value("unknown") != "blocked" && args.value("unknown") != "free")
+    throw ArgError("--unknown must be blocked or free");
+  options.unknown_is_blocked = args.value("unknown") == "blocked";
+  const double timeout_s = args.number("timeout");
+  if (!(timeout_s > 0 && timeout_s <= 3600)) throw ArgError("--timeout must be in (0, 3600] seconds");
+  PlanGrid grid;
+  try {
+    grid = args.flag("live") ? receiveLiveGrid(args.value("lcm-url"), args.value("channel"), timeout_s)
+                             : readMapServerMap(args.value("map"));
+  } catch (const MapFileError& e) {
+    // Its own exit status: a script can tell "no map to plan on" from "no path on this map" (1).
+    std::fprintf(stderr, "bmp-plan: no grid: %s\n", e.what());
+    return 3;
+  }
+  const PlanResult path = planPath(grid, point(args, "from"), point(args, "to"), options);
+  if (args.given("out")) {
+    std::vector<uchar> png;
+    cv::imencode(".png", drawPath(grid, path, options, 4), png);
+    writeFileAtomically(args.value("out"), std::string(png.begin(), png.end()));
+  }
+  if (args.given("path-out")) writeFileAtomically(args.value("path-out"), pathText(path));
+  if (!path.found) {
+    std::printf("no path: %s\n", path.reason.c_str());
+    return 1;
+  }
+  std::printf("path length %.3f m, %zu cells\n", path.length_m, path.cells.size());
+  return 0;
+}
+
+void addPlanOptions(ArgParser& args) {
+  args.addOption("map", "FILE", "a map_server YAML (bmp-mapper's occupancy.yaml)");
+  args.addFlag("live", "use the next OCCUPANCY_GRID message instead");
+  args.addOption("from", "X,Y", "start, metres");
+  args.addOption("to", "X,Y", "goal, metres");
+  args.addOption("robot-radius", "M", "occupied cells block everything within this distance", "0.2");
+  args.addOption("unknown", "blocked|free", "how unknown cells count", "blocked");
+  args.addOption("out", "FILE", "PNG of the grid with the path");
+  args.addOption("path-out", "FILE", "the path as text, one 'x y' line per cell");
+  args.addOption("lcm-url", "URL", "with --live (default: $LCM_DEFAULT_URL, else the project's default)");
+  args.addOption("channel", "NAME", "with --live", "OCCUPANCY_GRID");
+  args.addOption("timeout", "S", "with --live: how long to wait for a grid (bmp-mapper repeats it every 5 s)",
+                 "10");
+}
+
+}  // namespace bmp::plan
