@@ -43,13 +43,8 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
     skip(failed);
   };
   const FrameStream::Verdict verdict = stream_.accept(msg);
-  if (verdict.repeat) {  // capture resent it: answer again if the answer is out, else it is on its way
-    if (const auto again = last_answer_.forFrame(msg.seq, msg.utime)) {
-      ctx_.lcm.publish(settings_.detections_channel, *again);
-      ++repeats_answered_;
-    }
-    return;
-  }
+  if (verdict.repeat)
+    return last_answer_.answerRepeat(ctx_.lcm, settings_.detections_channel, msg.seq, msg.utime);
   ctx_.status.received();  // a repeat is not a frame of its own
   ctx_.status.lost(verdict.lost_before);
   if (!verdict.ok) return refuse(verdict.reason);
@@ -111,7 +106,7 @@ int DetectorNode::run() {
   log::info("processed ", ctx_.status.processedCount(), " of ", ctx_.status.receivedCount(),
             " frame(s), dropped ", ctx_.status.droppedCount(), " (", unfinished,
             " of them not yet processed at exit), malformed ", ctx_.status.malformedCount(),
-            ", resent by capture ", stream_.repeats(), " (", repeats_answered_,
+            ", resent by capture ", stream_.repeats(), " (", last_answer_.answeredAgain(),
             " answered again); per frame ", frame_times_.empty() ? std::string("-") : frame_times_.summary());
   return 0;
 }

@@ -44,8 +44,7 @@ class DetectorNode {
   TimingStats frame_times_;
   FrameStream stream_;  // refuses unusable or out-of-order frames, counts those lost upstream
   LastAnswer<detections_t> last_answer_;  // published again for a frame capture resends
-  int64_t repeats_answered_ = 0;
-  DetectionWorker worker_;  // last: its thread stops first, before what it uses goes
+  DetectionWorker worker_;                // last: its thread stops first, before what it uses goes
 };
 
 }  // namespace bmp::detector

@@ -54,13 +54,7 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
   // Judged here, in arrival order, before the queue: a frame the queue later drops was received and is
   // counted as dropped, not also as a gap (lost) when the next one is tracked.
   const FrameStream::Verdict verdict = stream_.accept(msg);
-  if (verdict.repeat) {  // capture resent it: answer again if the answer is out, else it is on its way
-    if (const auto again = last_pose_.forFrame(msg.seq, msg.utime)) {
-      ctx_.lcm.publish(channels_.pose, *again);
-      ++repeats_answered_;
-    }
-    return;
-  }
+  if (verdict.repeat) return last_pose_.answerRepeat(ctx_.lcm, channels_.pose, msg.seq, msg.utime);
   ++received_;  // a repeat is not a frame of its own
   lost_before_ += verdict.lost_before;
   if (!verdict.ok) return refuse(msg, verdict);
@@ -179,7 +173,7 @@ void TrackerNode::run(double idle_exit_s) {
   log::info("tracked ", timing_.count(), " frames, ", lost_, " lost, ", degraded_, " degraded (fewer than ",
             policy_.degraded_inliers, " inliers); ", lost_before_.load(), " frame(s) never arrived, ",
             queue_.dropped(), " dropped while busy, ", unfinished, " still queued at exit, ", refused_.load(),
-            " refused, ", stream_.repeats(), " resent by capture (", repeats_answered_.load(),
+            " refused, ", stream_.repeats(), " resent by capture (", last_pose_.answeredAgain(),
             " answered again); tracking ", timing_.summary());
 }
 

@@ -93,9 +93,8 @@ class TrackerNode {
   int64_t degraded_ = 0;   // OK poses published as DEGRADED
   DetectionPolicy policy_;
   DetectionBook book_;
-  LastAnswer<slam_pose_t> last_pose_;         // published again for a repeated frame
-  std::atomic<int64_t> repeats_answered_{0};  // repeated frames whose answer went out again
-  int64_t newest_frame_seq_ = 0;  // receive thread only: answers far beyond it name no frame of ours
+  LastAnswer<slam_pose_t> last_pose_;  // published again for a repeated frame
+  int64_t newest_frame_seq_ = 0;       // receive thread only: answers far beyond it name no frame of ours
   std::atomic<int64_t> detections_heard_{0};
   bool warned_no_detections_ = false;
   struct HeldKeyframe {
