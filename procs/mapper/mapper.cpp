@@ -184,7 +184,10 @@ const PointList& Mapper::cloud() {
 const std::optional<FloorPlane>& Mapper::floor() {
   if (settings_.grid.floor.mode == FloorMode::kFit && floor_revision_ != map_revision_) {
     const auto& up = settings_.grid.up;
-    floor_ = fitFloor(stitched(), Eigen::Vector3d(up[0], up[1], up[2]), settings_.grid.floor);
+    // A floor once found stays until a refit finds one again: near the support threshold the fit can miss
+    // it for a keyframe or two, and the grid would jump between two frames (seen on the synthetic default).
+    if (auto fitted = fitFloor(stitched(), Eigen::Vector3d(up[0], up[1], up[2]), settings_.grid.floor))
+      floor_ = fitted;
     floor_revision_ = map_revision_;
   }
   return floor_;

@@ -104,12 +104,8 @@ void MapperNode::publishDue(double now) {
 
 void MapperNode::reportFloor() {
   const auto& floor = mapper_.floor();
-  if (floor.has_value() == floor_reported_) return;
-  floor_reported_ = floor.has_value();
-  if (!floor) {
-    log::warn("floor lost: the grid's band is measured from grid.floor.height_m again");
-    return;
-  }
+  if (!floor || floor_reported_) return;  // a fitted floor stays fitted (Mapper::floor)
+  floor_reported_ = true;
   const auto& up = mapper_.settings().grid.up;
   const double tilt =
       std::acos(std::clamp(floor->normal.dot(Eigen::Vector3d(up[0], up[1], up[2])), -1.0, 1.0));
