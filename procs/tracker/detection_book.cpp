@@ -26,6 +26,16 @@ std::optional<FrameBoxes> DetectionBook::take(int64_t seq, int64_t utime, std::c
   return out;
 }
 
+std::optional<FrameBoxes> DetectionBook::newestBefore(int64_t seq, int64_t min_seq) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (auto it = by_frame_.rbegin(); it != by_frame_.rend(); ++it) {
+    if (it->first.first >= seq || !it->second.usable) continue;
+    if (it->first.first < min_seq) break;  // ordered by seq: the rest are older still
+    return it->second;
+  }
+  return std::nullopt;
+}
+
 std::size_t DetectionBook::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return by_frame_.size();

@@ -3,8 +3,9 @@
 // another thread, any order); the tracker asks for a frame's boxes when it tracks it. The rule:
 //   - lockstep (wait > 0): the tracker waits for the frame's answer up to the wait, so every run sees the
 //     same boxes;
-//   - real time (wait = 0): it never waits; a frame whose answer is not there yet is tracked on the
-//     probabilities carried by its matches, and an answer that comes later is handed over as late
+//   - real time (wait = 0): it never waits; a frame whose answer is not there yet is observed with the
+//     newest earlier answer (newestBefore, grown for its age by the tracker node) or, without one, tracked
+//     on the probabilities carried by its matches; an answer that comes later is handed over as late
 //     (applied to the keyframe the frame made, if it made one).
 // Answers are kept by (seq, stamp): one that names a frame's seq with another stamp (a forged or stale
 // answer) is kept apart and never displaces or hides the real one. Bounded: only the `capacity` answers
@@ -36,6 +37,9 @@ class DetectionBook {
   // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came. Taken answers are
   // removed.
   std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
+  // A copy of the newest usable answer for a frame before seq and at or after min_seq (it stays in the
+  // book for its own frame); nullopt when there is none.
+  std::optional<FrameBoxes> newestBefore(int64_t seq, int64_t min_seq) const;
   std::size_t size() const;
   std::size_t capacity() const { return capacity_; }
   int64_t discarded() const;  // answers pushed out unused by newer ones

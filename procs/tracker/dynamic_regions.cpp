@@ -65,4 +65,13 @@ std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std
   return share;
 }
 
+std::vector<ObjectBox> grownForAge(std::vector<ObjectBox> boxes, double age_s, double growth_px_per_s) {
+  const auto grow = static_cast<float>(std::max(0.0, age_s) * growth_px_per_s);
+  for (ObjectBox& b : boxes) {
+    if (b.level == DynamicLevel::kLow) continue;
+    b.box = cv::Rect2f(b.box.x - grow, b.box.y - grow, b.box.width + 2 * grow, b.box.height + 2 * grow);
+  }
+  return boxes;
+}
+
 }  // namespace bmp::tracker

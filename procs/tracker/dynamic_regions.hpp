@@ -42,4 +42,9 @@ std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
 std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std::vector<ObjectBox>& boxes,
                                 const std::vector<uint8_t>& flag);
 
+// Boxes seen age_s before the frame they stand in for (real time: the frame's own answer has not come):
+// each high or medium box grown by growth_px_per_s * age_s on every side, as far as a mover may have gone
+// meanwhile. Low-dynamic boxes stay as they were: they do not move, and a grown one would hide a person.
+std::vector<ObjectBox> grownForAge(std::vector<ObjectBox> boxes, double age_s, double growth_px_per_s);
+
 }  // namespace bmp::tracker

@@ -189,6 +189,8 @@ DynamicOptions dynamicOptions(const Config& c) {
   readAtLeast(c, "neighbour_radius_px", o.neighbour_radius_px, 0.0);
   readPositive(c, "neighbour_depth_m", o.neighbour_depth_m);
   readAtLeast(c, "mask_keypoint_radius_px", o.mask_keypoint_radius_px, 0);
+  readAtLeast(c, "stale_box_max_age_s", o.stale_box_max_age_s, 0.0);
+  readAtLeast(c, "stale_box_growth_px_per_s", o.stale_box_growth_px_per_s, 0.0);
   return o;
 }
 

@@ -134,6 +134,10 @@ struct DynamicOptions {
   double neighbour_radius_px = 24.0;
   double neighbour_depth_m = 0.3;
   int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
+  // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old,
+  // each grown by stale_box_growth_px_per_s times their age (0: such frames are tracked on priors alone).
+  double stale_box_max_age_s = 0.5;
+  double stale_box_growth_px_per_s = 250.0;
 };
 
 struct TrackerConfig {

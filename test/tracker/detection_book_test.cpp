@@ -51,6 +51,24 @@ TEST(DetectionBook, KeepsOnlyTheNewestAnswersAndCountsTheRest) {
   EXPECT_TRUE(book.take(9, 9000, kNoWait));
 }
 
+// Real time: the newest usable answer before a frame stands in for its own, which it leaves in the book.
+TEST(DetectionBook, NewestBeforeIsACopyOfTheNewestUsableEarlierAnswer) {
+  DetectionBook book;
+  book.add(3, answer(3000, 1));
+  book.add(5, answer(5000, 2));
+  FrameBoxes skipped = answer(6000, 0);
+  skipped.usable = false;
+  book.add(6, skipped);
+  book.add(9, answer(9000, 4));  // after the frame: not a stand-in
+  const auto got = book.newestBefore(8, 0);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->utime, 5000) << "the skipped answer is no stand-in";
+  EXPECT_TRUE(book.take(5, 5000, kNoWait)) << "still there for its own frame";
+  EXPECT_EQ(book.newestBefore(8, 0)->utime, 3000);
+  EXPECT_FALSE(book.newestBefore(8, 4)) << "older than min_seq";
+  EXPECT_FALSE(book.newestBefore(3, 0));
+}
+
 // Lockstep waits for the frame's answer; an answer that comes while it waits ends the wait.
 TEST(DetectionBook, TakeWaitsForAnAnswerThatArrives) {
   DetectionBook book;

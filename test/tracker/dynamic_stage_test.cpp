@@ -84,5 +84,24 @@ TEST(DynamicRegions, OverlappingPeopleAndMediumObjects) {
   EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, share)[3], 1);
 }
 
+// Real time: boxes 0.2 s old stand in for a frame's own; a person walking out of the old box is caught by the
+// growth, the monitor behind them is not grown over them.
+TEST(DynamicRegions, StaleBoxesGrowWithTheirAgeButLowBoxesStay) {
+  const std::vector<ObjectBox> boxes = {box(100, 100, 80, 200, DynamicLevel::kHigh),
+                                        box(300, 100, 60, 60, DynamicLevel::kMedium),
+                                        box(200, 150, 50, 40, DynamicLevel::kLow)};
+  const auto grown = grownForAge(boxes, 0.2, 250.0);  // 50 px on every side
+  EXPECT_FLOAT_EQ(grown[0].box.x, 50.0f);
+  EXPECT_FLOAT_EQ(grown[0].box.width, 180.0f);
+  EXPECT_FLOAT_EQ(grown[0].box.height, 300.0f);
+  EXPECT_FLOAT_EQ(grown[1].box.y, 50.0f);
+  EXPECT_EQ(grown[2].box, boxes[2].box);
+  // A keypoint 30 px right of the old person box: outside it, inside the grown one.
+  const std::vector<cv::KeyPoint> keys = {at(210, 120)};
+  EXPECT_EQ(observeRegions(keys, boxes, movingBoxes(boxes, RegionOptions{}))[0], 0);
+  EXPECT_EQ(observeRegions(keys, grown, movingBoxes(grown, RegionOptions{}))[0], 1);
+  EXPECT_EQ(grownForAge(boxes, -1.0, 250.0)[0].box, boxes[0].box) << "no shrinking";
+}
+
 }  // namespace
 }  // namespace bmp::tracker

@@ -130,6 +130,8 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.neighbour_radius_px", d.neighbour_radius_px);
   put("dynamic.neighbour_depth_m", d.neighbour_depth_m);
   put("dynamic.mask_keypoint_radius_px", d.mask_keypoint_radius_px);
+  put("dynamic.stale_box_max_age_s", d.stale_box_max_age_s);
+  put("dynamic.stale_box_growth_px_per_s", d.stale_box_growth_px_per_s);
 }
 
 std::map<std::string, std::string> fieldsOf(const TrackerConfig& c) {

@@ -95,7 +95,8 @@ void TrackerNode::onDetections(const detections_t& msg) {
   book_.add(d.seq, std::move(boxes));
 }
 
-std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& msg) {
+std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& msg, bool& own) {
+  own = false;
   if (config_.dynamic.mode == DynamicMode::kNone) return std::nullopt;
   // Without any detector on the bus, waiting would only slow every frame: wait again once one is heard.
   const bool wait = policy_.reproducible && (detections_heard_ > 0 || !warned_no_detections_);
@@ -106,8 +107,20 @@ std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& 
     log::warn("no answer on ", channels_.detections, " within ", policy_.wait_ms,
               " ms: tracking without boxes until the detector is heard");
   }
-  if (!got || !got->usable) return std::nullopt;
-  return std::move(got->boxes);
+  if (got && got->usable) {
+    own = true;
+    return std::move(got->boxes);
+  }
+  if (got || wait) return std::nullopt;  // the detector skipped it, or lockstep: no stand-in
+  // Real time, the answer not here yet: the newest answer before it stands in, grown for its age.
+  const DynamicOptions& d = config_.dynamic;
+  std::optional<FrameBoxes> before =
+      book_.newestBefore(msg.seq, msg.seq - static_cast<int64_t>(book_.capacity()));
+  if (!before) return std::nullopt;
+  const double age_s = static_cast<double>(msg.utime - before->utime) * 1e-6;
+  if (age_s <= 0.0 || age_s > d.stale_box_max_age_s) return std::nullopt;
+  ++stale_boxes_used_;
+  return grownForAge(std::move(before->boxes), age_s, d.stale_box_growth_px_per_s);
 }
 
 void TrackerNode::releaseHeldKeyframes(bool all) {
@@ -170,6 +183,10 @@ void TrackerNode::run(double idle_exit_s) {
   const std::size_t unfinished = queue_.size();
   ctx_.status.dropped(static_cast<int64_t>(unfinished));
   if (tracker_) tracker_->finish();
+  if (stale_boxes_used_ + late_applied_ > 0)
+    log::info("boxes: ", stale_boxes_used_,
+              " frame(s) observed with an earlier frame's (their own not come), ", late_applied_,
+              " keyframe(s) took theirs late");
   log::info("tracked ", timing_.count(), " frames, ", lost_, " lost, ", degraded_, " degraded (fewer than ",
             policy_.degraded_inliers, " inliers); ", lost_before_.load(), " frame(s) never arrived, ",
             queue_.dropped(), " dropped while busy, ", unfinished, " still queued at exit, ", refused_.load(),
@@ -217,11 +234,12 @@ void TrackerNode::process(const Queued& frame) {
   input.seq = msg.seq;
   input.image = color;
   input.depth = depth;
-  input.boxes = boxesFor(msg);
+  bool own_boxes = false;
+  input.boxes = boxesFor(msg, own_boxes);
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
-  publish(msg, r, color, depth, input.boxes.has_value());
+  publish(msg, r, color, depth, own_boxes);
   ctx_.status.processed();
 }
 

@@ -69,7 +69,8 @@ class TrackerNode {
   void refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict);  // likewise
   void process(const Queued& frame);
   void onDetections(const detections_t& msg);
-  std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg);
+  // The frame's boxes (own: its own answer), or in real time the newest earlier ones grown for their age.
+  std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg, bool& own);
   // Real time: publishes held keyframes whose answer came (with late boxes applied) or whose time is up.
   void releaseHeldKeyframes(bool all);
   void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth,
@@ -106,6 +107,7 @@ class TrackerNode {
   };
   std::deque<HeldKeyframe> held_;
   int64_t late_applied_ = 0;
+  int64_t stale_boxes_used_ = 0;  // frames observed with an earlier frame's boxes
   std::unique_ptr<Tracker> tracker_;
   TrackerOutputs outputs_;
   std::optional<TumTrajectoryStream> live_trajectory_;
