@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -13,6 +14,8 @@
 #include "capture/camera_selection.hpp"
 #include "capture/looped_source.hpp"
 #include "capture/tum_sequence.hpp"
+#include "detector/detector.hpp"
+#include "detector/detector_settings.hpp"
 #include "eval/ate.hpp"
 #include "tracker/tracker_settings.hpp"
 #include "tracker_offline/offline_runner.hpp"
@@ -102,6 +105,24 @@ struct PassedFrames {
   bmp::Trajectory groundtruth;
 };
 
+// --detector: the detector (config/detector.yaml) over every frame of one pass, before any tracking, so
+// its time counts nowhere and the tracker runs as fast as without it; frame i of each pass gets boxes[i].
+std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start) {
+  const bmp::Config file = bmp::Config::fromFile(bmp::configDir() + "/detector.yaml");
+  const auto settings = bmp::detector::detectorSettingsFromConfig(file, std::nullopt, bmp::configDir());
+  file.finish();
+  bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
+  std::vector<std::vector<ObjectBox>> all;
+  FrameProvider frames = tumFolderFrames(dir, start);
+  while (auto frame = frames()) {
+    std::vector<ObjectBox> boxes;
+    for (const auto& d : detector.detect(frame->image)) boxes.push_back({d.box, d.level, d.class_id, d.score});
+    all.push_back(std::move(boxes));
+    if (all.size() % 100 == 0) std::fprintf(stderr, "detector: %zu frames\n", all.size());
+  }
+  return all;
+}
+
 PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
@@ -124,14 +145,20 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       shifted.stamp += static_cast<double>(p) * period;
       out.groundtruth.push_back(shifted);
     }
+  auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
+      args.flag("detector") ? detectAll(dir, start) : std::vector<std::vector<ObjectBox>>{});
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
+  auto in_pass = std::make_shared<std::size_t>(0);
   out.frames = [=]() -> std::optional<OfflineFrame> {
     for (;;) {
       if (auto frame = (*current)()) {
         frame->stamp += static_cast<double>(*pass) * period;
+        if (*in_pass < boxes->size()) frame->boxes = (*boxes)[*in_pass];
+        ++*in_pass;
         return frame;
       }
+      *in_pass = 0;
       if (passes > 1)
         std::printf("pass %4lld  keyframes %5d  map points %7d  resident %.1f MiB\n", *pass + 1,
                     last->num_keyframes, last->num_map_points,
@@ -191,6 +218,9 @@ void addBenchTrackerOptions(ArgParser& args) {
   args.addOption("frame-gap-ms", "N", "sleep N ms after each frame (idle time, as between pipeline frames)",
                  "0");
   args.addFlag("inline-mapping", "run local mapping inline instead of in its thread (deterministic)");
+  args.addFlag("detector",
+               "give the tracker the detector's boxes (config/detector.yaml), found for every frame before "
+               "tracking starts (untimed): the dynamic stage at work, as in a lockstep run");
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("verbose", "print every frame's state, not every 100th");
 }

@@ -21,6 +21,7 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     input.image = frame->image;
     input.depth = frame->depth;
     input.exclusion_mask = frame->exclusion_mask;
+    input.boxes = frame->boxes;
     TrackResult r = tracker.track(input);
     out.track_ms.add(r.processing_ms);
     out.frames_lost += r.state == TrackingState::kLost;

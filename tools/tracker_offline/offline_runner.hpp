@@ -19,6 +19,7 @@ struct OfflineFrame {
   cv::Mat image;           // BGR or gray
   cv::Mat depth;           // CV_16UC1 or CV_32FC1 metres
   cv::Mat exclusion_mask;  // optional CV_8UC1: keypoints on nonzero pixels take no part
+  std::optional<std::vector<ObjectBox>> boxes;  // the detector's, when known (the dynamic stage's input)
 };
 // Returns the next frame, or nullopt at the end.
 using FrameProvider = std::function<std::optional<OfflineFrame>()>;
