@@ -218,10 +218,20 @@ int Tracker::countTracked(const Frame& frame) const {
   return n;
 }
 
+Tracker::FrameRecord::FrameRecord(double stamp_s, int64_t reference, const SE3& T)
+    : stamp(stamp_s),
+      reference_id(reference),
+      t_ref_cam(T.translation().cast<float>()),
+      q_ref_cam(Eigen::Quaterniond(T.linear()).cast<float>()) {}
+
+SE3 Tracker::FrameRecord::T_ref_cam() const {
+  return makeSE3(t_ref_cam.cast<double>(), q_ref_cam.cast<double>());
+}
+
 void Tracker::rememberFrame(const Frame& frame) {
-  records_.push_back({frame.stamp, reference_kf_->id, reference_kf_->T_cam_world() * frame.T_world_cam()});
+  last_T_ref_cam_ = reference_kf_->T_cam_world() * frame.T_world_cam();
+  records_.emplace_back(frame.stamp, reference_kf_->id, last_T_ref_cam_);
   last_frame_ = frame;
-  last_T_ref_cam_ = records_.back().T_ref_cam;
 }
 
 Trajectory Tracker::trajectory() {
@@ -229,7 +239,7 @@ Trajectory Tracker::trajectory() {
   Trajectory out;
   out.reserve(records_.size());
   for (const auto& r : records_)
-    out.push_back({r.stamp, normalized(map_.trajectoryPose(r.reference_id) * r.T_ref_cam)});
+    out.push_back({r.stamp, normalized(map_.trajectoryPose(r.reference_id) * r.T_ref_cam())});
   return out;
 }
 

@@ -105,11 +105,16 @@ class Tracker {
   int countTracked(const Frame& frame) const;
 
   // A tracked frame, relative to its reference keyframe by id: holding the keyframe itself would keep
-  // every culled keyframe and its features alive for the whole run.
+  // every culled keyframe and its features alive for the whole run. One per frame for the whole run, so
+  // kept small (48 bytes, not an Isometry3d's 144): the pose relative to a nearby keyframe needs no
+  // double precision (float: under a micrometre and a microradian at a few metres).
   struct FrameRecord {
+    FrameRecord(double stamp, int64_t reference_id, const SE3& T_ref_cam);
+    SE3 T_ref_cam() const;
     double stamp;
     int64_t reference_id;
-    SE3 T_ref_cam;
+    Eigen::Vector3f t_ref_cam;
+    Eigen::Quaternionf q_ref_cam;
   };
 
   TrackerConfig config_;
@@ -128,7 +133,7 @@ class Tracker {
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   int64_t last_keyframe_seq_ = 0;
   int64_t last_reloc_seq_ = -1000000;
-  std::vector<FrameRecord> records_;
+  std::deque<FrameRecord> records_;  // a deque: no copy of the whole run's records when it grows
 };
 
 }  // namespace bmp::tracker
