@@ -116,7 +116,8 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start)
   FrameProvider frames = tumFolderFrames(dir, start);
   while (auto frame = frames()) {
     std::vector<ObjectBox> boxes;
-    for (const auto& d : detector.detect(frame->image)) boxes.push_back({d.box, d.level, d.class_id, d.score});
+    for (const auto& d : detector.detect(frame->image))
+      boxes.push_back({d.box, d.level, d.class_id, d.score});
     all.push_back(std::move(boxes));
     if (all.size() % 100 == 0) std::fprintf(stderr, "detector: %zu frames\n", all.size());
   }

@@ -16,9 +16,9 @@ namespace bmp::tracker {
 
 struct OfflineFrame {
   double stamp = 0.0;
-  cv::Mat image;           // BGR or gray
-  cv::Mat depth;           // CV_16UC1 or CV_32FC1 metres
-  cv::Mat exclusion_mask;  // optional CV_8UC1: keypoints on nonzero pixels take no part
+  cv::Mat image;                                // BGR or gray
+  cv::Mat depth;                                // CV_16UC1 or CV_32FC1 metres
+  cv::Mat exclusion_mask;                       // optional CV_8UC1: keypoints on nonzero pixels take no part
   std::optional<std::vector<ObjectBox>> boxes;  // the detector's, when known (the dynamic stage's input)
 };
 // Returns the next frame, or nullopt at the end.
