@@ -116,6 +116,7 @@ class Tracker {
     Eigen::Vector3f t_ref_cam;
     Eigen::Quaternionf q_ref_cam;
   };
+  static_assert(sizeof(FrameRecord) <= 48, "a frame record is kept for every frame of the run");
 
   TrackerConfig config_;
   std::shared_ptr<const FrameGeometry> geometry_;
