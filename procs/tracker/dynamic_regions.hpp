@@ -20,6 +20,16 @@ struct ObjectBox {
   float score = 0.0f;
 };
 
+// The detector's detections as the dynamic stage's boxes. A template over the detection type
+// (detector::Detection: box, level, class_id, score), so this library does not depend on the detector's.
+template <typename Detections>
+std::vector<ObjectBox> toObjectBoxes(const Detections& detections) {
+  std::vector<ObjectBox> boxes;
+  boxes.reserve(detections.size());
+  for (const auto& d : detections) boxes.push_back({d.box, d.level, d.class_id, d.score});
+  return boxes;
+}
+
 struct RegionOptions {
   // A medium-dynamic box counts as moving when at least this share of its area lies inside one
   // high-dynamic box: an object in a person's hands moves with the person.

@@ -33,12 +33,7 @@ BoxesPerFrame detections(const capture::SyntheticScene& scene) {
   detector::Detector yolo(detector::DetectorConfig{},
                           Config::fromFile(test::sourceDir() + "/config/dynamic_classes.yaml"));
   BoxesPerFrame all;
-  for (int i = 0; i < kFrames; ++i) {
-    std::vector<ObjectBox> boxes;
-    for (const auto& d : yolo.detect(scene.render(i).bgr))
-      boxes.push_back({d.box, d.level, d.class_id, d.score});
-    all.push_back(std::move(boxes));
-  }
+  for (int i = 0; i < kFrames; ++i) all.push_back(toObjectBoxes(yolo.detect(scene.render(i).bgr)));
   return all;
 }
 

@@ -38,10 +38,15 @@ TrackerConfig loadConfig(const bmp::ArgParser& args) {
   return config;
 }
 
+// --frames N, or -1: every frame.
+int maxFrames(const bmp::ArgParser& args) {
+  return args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
+}
+
 // Progress every 100th frame (every frame with --verbose), then the --frame-gap-ms pause.
 OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   OfflineOptions options;
-  options.max_frames = args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
+  options.max_frames = maxFrames(args);
   const bool verbose = args.flag("verbose");
   // A pause after each frame, as between frames of the pipeline: local mapping then has time to finish
   // (the pipeline's lockstep leaves it idle when the next frame arrives), which changes its timing.
@@ -105,20 +110,20 @@ struct PassedFrames {
   bmp::Trajectory groundtruth;
 };
 
-// --detector: the detector (config/detector.yaml) over every frame of one pass, before any tracking, so
-// its time counts nowhere and the tracker runs as fast as without it; frame i of each pass gets boxes[i].
-std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start) {
+// --detector: the detector (config/detector.yaml) over every frame of one pass (at most max_frames, < 0:
+// all), before any tracking, so its time counts nowhere and the tracker runs as fast as without it; frame
+// i of each pass gets boxes[i].
+std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start, int max_frames) {
   const bmp::Config file = bmp::Config::fromFile(bmp::configDir() + "/detector.yaml");
   const auto settings = bmp::detector::detectorSettingsFromConfig(file, std::nullopt, bmp::configDir());
   file.finish();
   bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   std::vector<std::vector<ObjectBox>> all;
   FrameProvider frames = tumFolderFrames(dir, start);
-  while (auto frame = frames()) {
-    std::vector<ObjectBox> boxes;
-    for (const auto& d : detector.detect(frame->image))
-      boxes.push_back({d.box, d.level, d.class_id, d.score});
-    all.push_back(std::move(boxes));
+  while (max_frames < 0 || static_cast<int>(all.size()) < max_frames) {
+    const auto frame = frames();
+    if (!frame) break;
+    all.push_back(toObjectBoxes(detector.detect(frame->image)));
     if (all.size() % 100 == 0) std::fprintf(stderr, "detector: %zu frames\n", all.size());
   }
   return all;
@@ -147,7 +152,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       out.groundtruth.push_back(shifted);
     }
   auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
-      args.flag("detector") ? detectAll(dir, start) : std::vector<std::vector<ObjectBox>>{});
+      args.flag("detector") ? detectAll(dir, start, maxFrames(args)) : std::vector<std::vector<ObjectBox>>{});
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
   auto in_pass = std::make_shared<std::size_t>(0);

@@ -90,7 +90,7 @@ void TrackerNode::onDetections(const detections_t& msg) {
   FrameBoxes boxes;
   boxes.utime = d.utime;
   boxes.usable = d.skipped.empty();
-  for (const auto& det : d.detections) boxes.boxes.push_back({det.box, det.level, det.class_id, det.score});
+  boxes.boxes = toObjectBoxes(d.detections);
   ++detections_heard_;
   book_.add(d.seq, std::move(boxes));
 }
