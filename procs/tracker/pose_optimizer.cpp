@@ -1,18 +1,125 @@
 #include "tracker/pose_optimizer.hpp"
 
-#include <ceres/ceres.h>
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include <cmath>
-
-#include "tracker/pose_params.hpp"
-#include "tracker/residuals.hpp"
 
 namespace bmp::tracker {
 
 namespace {
 
-PinholeBf toPinhole(const PoseCamera& c) {
-  return {c.fx, c.fy, c.cx, c.cy, c.bf};
+// A 6-DoF Levenberg-Marquardt on the pose alone, with Huber weights (IRLS). The problem is tiny (6 unknowns,
+// a few hundred residuals), so the normal equations are built directly: no solver object, no allocation per
+// residual, which is where a general solver spent most of this step's time.
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+struct Active {
+  const PoseObservation* obs;
+  double sqrt_info;  // sqrt(information * weight): whitens the residual
+  double delta2;     // Huber threshold on the squared whitened residual; <= 0: plain least squares
+};
+
+// Whitened residual (2 or 3 rows) and its Jacobian with respect to a left increment (omega, v) of the pose:
+// p' = exp(omega) p + v, so dp/d(omega, v) = [-[p]x | I].
+int residualAndJacobian(const SE3& T, const Active& a, const PoseCamera& c, double* r,
+                        Eigen::Matrix<double, 3, 6>* J) {
+  const Eigen::Vector3d p = T * a.obs->p_world;
+  const double inv_z = 1.0 / p.z();
+  const double u = c.fx * p.x() * inv_z + c.cx, v = c.fy * p.y() * inv_z + c.cy;
+  const int rows = a.obs->u_right >= 0.0 ? 3 : 2;
+  r[0] = a.sqrt_info * (u - a.obs->uv.x());
+  r[1] = a.sqrt_info * (v - a.obs->uv.y());
+  if (rows == 3) r[2] = a.sqrt_info * (u - c.bf * inv_z - a.obs->u_right);
+  if (J == nullptr) return rows;
+  Eigen::Matrix<double, 3, 3> dproj;
+  dproj << c.fx * inv_z, 0.0, -c.fx * p.x() * inv_z * inv_z,  //
+      0.0, c.fy * inv_z, -c.fy * p.y() * inv_z * inv_z,       //
+      c.fx * inv_z, 0.0, (-c.fx * p.x() + c.bf) * inv_z * inv_z;
+  Eigen::Matrix<double, 3, 6> dp;
+  dp << 0.0, p.z(), -p.y(), 1.0, 0.0, 0.0,  //
+      -p.z(), 0.0, p.x(), 0.0, 1.0, 0.0,    //
+      p.y(), -p.x(), 0.0, 0.0, 0.0, 1.0;
+  *J = a.sqrt_info * dproj * dp;
+  return rows;
+}
+
+// Huber cost of a squared residual s, as Ceres's HuberLoss: s inside, 2 delta sqrt(s) - delta^2 outside.
+double huber(double s, double delta2) {
+  if (delta2 <= 0.0 || s <= delta2) return s;
+  return 2.0 * std::sqrt(delta2 * s) - delta2;
+}
+
+double huberWeight(double s, double delta2) {
+  if (delta2 <= 0.0 || s <= delta2) return 1.0;
+  return std::sqrt(delta2 / s);
+}
+
+double totalCost(const SE3& T, const std::vector<Active>& active, const PoseCamera& c) {
+  double cost = 0.0;
+  double r[3];
+  for (const auto& a : active) {
+    if ((T * a.obs->p_world).z() <= 0.0) return INFINITY;
+    const int rows = residualAndJacobian(T, a, c, r, nullptr);
+    double s = 0.0;
+    for (int i = 0; i < rows; ++i) s += r[i] * r[i];
+    cost += huber(s, a.delta2);
+  }
+  return cost;
+}
+
+SE3 applyIncrement(const SE3& T, const Vec6& d) {
+  const Eigen::Vector3d w = d.head<3>();
+  const double angle = w.norm();
+  SE3 out = T;
+  if (angle > 1e-15) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+    out.linear() = R * T.linear();
+    out.translation() = R * T.translation();
+  }
+  out.translation() += d.tail<3>();
+  return out;
+}
+
+void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCamera& c, int iterations) {
+  double cost = totalCost(T, active, c);
+  double lambda = 1e-4;
+  double r[3];
+  Eigen::Matrix<double, 3, 6> J;
+  for (int it = 0; it < iterations; ++it) {
+    Mat6 H = Mat6::Zero();
+    Vec6 g = Vec6::Zero();
+    for (const auto& a : active) {
+      const int rows = residualAndJacobian(T, a, c, r, &J);
+      double s = 0.0;
+      for (int i = 0; i < rows; ++i) s += r[i] * r[i];
+      const double w = huberWeight(s, a.delta2);
+      const auto Jr = J.topRows(rows);
+      H.noalias() += w * Jr.transpose() * Jr;
+      g.noalias() += w * Jr.transpose() * Eigen::Map<const Eigen::VectorXd>(r, rows);
+    }
+    bool improved = false;
+    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
+      Mat6 A = H;
+      A.diagonal() += lambda * H.diagonal().cwiseMax(1e-9);
+      const Vec6 d = A.ldlt().solve(-g);
+      if (!d.allFinite()) break;
+      const SE3 candidate = applyIncrement(T, d);
+      const double candidate_cost = totalCost(candidate, active, c);
+      if (candidate_cost < cost) {
+        const double gain = cost - candidate_cost;
+        T = candidate;
+        cost = candidate_cost;
+        lambda = std::max(lambda / 10.0, 1e-9);
+        improved = true;
+        if (gain < 1e-10 * cost || d.norm() < 1e-12) return;  // converged
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!improved) return;  // no step lowers the cost: at a minimum
+  }
 }
 
 }  // namespace
@@ -31,41 +138,22 @@ double poseChi2(const SE3& T, const PoseObservation& o, const PoseCamera& c) {
 
 int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const PoseCamera& camera,
                  const PoseOptimizerOptions& options) {
-  double pose[6];
-  poseToParams(T_cam_world, pose);
-  const PinholeBf cam = toPinhole(camera);
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.iterations_per_round;
-  solver.num_threads = 1;
-  solver.logging_type = ceres::SILENT;
+  SE3 T = T_cam_world;
+  std::vector<Active> active;
+  active.reserve(obs.size());
   int inliers = 0;
   for (int round = 0; round < options.rounds; ++round) {
-    ceres::Problem problem;
-    int residuals = 0;
     const bool robust = round + 1 < options.rounds;  // the last round refines on inliers only
+    active.clear();
     for (const auto& o : obs) {
       if (o.outlier || o.weight <= 0.0) continue;
-      const double s = std::sqrt(o.information * o.weight);
-      ceres::CostFunction* cost = nullptr;
-      double delta = 0.0;
-      if (o.u_right >= 0.0) {
-        cost = new ceres::AutoDiffCostFunction<PoseOnlyError<3>, 3, 6>(
-            new PoseOnlyError<3>(cam, o.p_world, o.uv, o.u_right, s));
-        delta = std::sqrt(options.chi2_rgbd);
-      } else {
-        cost = new ceres::AutoDiffCostFunction<PoseOnlyError<2>, 2, 6>(
-            new PoseOnlyError<2>(cam, o.p_world, o.uv, 0.0, s));
-        delta = std::sqrt(options.chi2_mono);
-      }
-      problem.AddResidualBlock(cost, robust ? new ceres::HuberLoss(delta) : nullptr, pose);
-      ++residuals;
+      if ((T * o.p_world).z() <= 0.0) continue;  // behind the camera: no residual; classified below
+      const double delta2 = robust ? (o.u_right >= 0.0 ? options.chi2_rgbd : options.chi2_mono) : 0.0;
+      active.push_back({&o, std::sqrt(o.information * o.weight), delta2});
     }
-    if (residuals < 3) break;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver, &problem, &summary);
+    if (active.size() < 3) break;
+    levenbergMarquardt(T, active, camera, options.iterations_per_round);
     // Reclassify every observation, so a point wrongly rejected early can return.
-    const SE3 T = poseFromParams(pose);
     inliers = 0;
     for (auto& o : obs) {
       const double chi2 = poseChi2(T, o, camera);
@@ -74,7 +162,7 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
     }
     if (inliers < 10) break;
   }
-  T_cam_world = normalized(poseFromParams(pose));
+  T_cam_world = normalized(T);
   return inliers;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// A pose as Ceres optimises it (private to the optimisers): T_cam_world as angle-axis (3), then translation
-// (3).
+// A pose as Ceres optimises it (private to local bundle adjustment): T_cam_world as angle-axis (3), then
+// translation (3).
 #include "bmp/common/se3.hpp"
 
 namespace bmp::tracker {

@@ -1,7 +1,7 @@
 #pragma once
-// Reprojection residuals for Ceres (private to the optimisers). A pose is T_cam_world as angle-axis (3) then
-// translation (3). With depth, the residual has a third row on the virtual right image, u - bf / z, so depth
-// enters with the same pixel units and level-dependent variance as u and v.
+// Reprojection residuals for Ceres (private to local bundle adjustment). A pose is T_cam_world as angle-axis
+// (3) then translation (3). With depth, the residual has a third row on the virtual right image, u - bf / z,
+// so depth enters with the same pixel units and level-dependent variance as u and v.
 #include <ceres/rotation.h>
 
 #include <Eigen/Core>
@@ -34,20 +34,6 @@ struct ReprojectionError {
 
   PinholeBf cam;
   double u, v, ur, s;
-};
-
-// The point is a constant: pose-only optimisation.
-template <int kRows>
-struct PoseOnlyError : ReprojectionError<kRows> {
-  PoseOnlyError(const PinholeBf& cam, const Eigen::Vector3d& p, const Eigen::Vector2d& uv, double ur,
-                double s)
-      : ReprojectionError<kRows>(cam, uv, ur, s), p_world(p) {}
-  template <typename T>
-  bool operator()(const T* pose, T* r) const {
-    const T p[3] = {T(p_world.x()), T(p_world.y()), T(p_world.z())};
-    return this->project(pose, p, r);
-  }
-  Eigen::Vector3d p_world;
 };
 
 // Pose and point both free: bundle adjustment.
