@@ -18,6 +18,7 @@
 #include "detector/detector_settings.hpp"
 #include "eval/ate.hpp"
 #include "tracker/tracker_settings.hpp"
+#include "tracker_offline/keypoint_score.hpp"
 #include "tracker_offline/offline_runner.hpp"
 
 namespace bmp::tracker {
@@ -35,6 +36,13 @@ TrackerConfig loadConfig(const bmp::ArgParser& args) {
     file.finish();
   }
   if (args.flag("inline-mapping")) config.mapping.threaded = false;
+  if (args.given("dynamic-mode")) {
+    try {
+      config.dynamic.mode = parseDynamicMode(args.value("dynamic-mode"));
+    } catch (const std::invalid_argument& e) {
+      throw bmp::ArgError(std::string("--dynamic-mode: ") + e.what());
+    }
+  }
   return config;
 }
 
@@ -51,7 +59,8 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   // A pause after each frame, as between frames of the pipeline: local mapping then has time to finish
   // (the pipeline's lockstep leaves it idle when the next frame arrives), which changes its timing.
   const auto gap = std::chrono::milliseconds(args.integer("frame-gap-ms"));
-  options.on_result = [verbose, gap](const TrackResult& r) {
+  options.exclude_movers = args.flag("oracle-masks");
+  options.on_result = [verbose, gap](const TrackResult& r, const OfflineFrame&) {
     if (gap.count() > 0) std::this_thread::sleep_for(gap);
     if (verbose || r.seq % 100 == 0)
       std::fprintf(stderr, "frame %5lld %-12s kp %4d excluded %4d tracked %4d map %6d kfs %4d  %.1f ms\n",
@@ -61,10 +70,26 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   return options;
 }
 
-// Per-frame times kept while tracking (the frames' results are not kept: long runs measure memory).
+// Per-frame figures kept while tracking (the frames' results are not kept: long runs measure memory).
 struct FrameTimes {
   bmp::TimingStats extract, wait;
 };
+
+// --score-masks: the dynamic stage against DIR/mask/ from this many seconds into the sequence on (the
+// probabilities need a few frames of history, as in the scenario tests).
+constexpr double kScoreFromS = 1.0;
+struct MaskScore {
+  KeypointScore score;
+  std::optional<double> first_stamp;
+};
+
+void printMaskScore(const MaskScore& s) {
+  std::printf("dynamic recall    %.4f (keypoints on movers kept out)\n", s.score.recall());
+  std::printf("dynamic precision %.4f (keypoints kept out that are on movers)\n", s.score.precision());
+  std::printf("static kept out   %.4f\n", s.score.staticKeptOut());
+  std::printf("keypoints scored  %ld on movers, %ld static (from %.0f s on)\n", s.score.onMovers(),
+              s.score.onStatic(), kScoreFromS);
+}
 
 void printRunSummary(const OfflineResult& result, const FrameTimes& times) {
   std::printf("frames           %d\n", result.frames);
@@ -132,7 +157,7 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start,
 PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
-  const bool masks = args.flag("oracle-masks");
+  const bool masks = args.flag("oracle-masks") || args.flag("score-masks");
   const long long passes = args.integer("passes");
   if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
   PassedFrames out;
@@ -189,12 +214,19 @@ int runBenchTracker(const bmp::ArgParser& args) {
   const PassedFrames input = passedFrames(args, last);
   OfflineOptions options = offlineOptions(args);
   auto times = std::make_shared<FrameTimes>();
+  auto scored = std::make_shared<MaskScore>();
+  const bool score = args.flag("score-masks");
   options.keep_results = false;
-  options.on_result = [report = options.on_result, last, times](const TrackResult& r) {
+  options.on_result = [report = options.on_result, last, times, scored, score](const TrackResult& r,
+                                                                               const OfflineFrame& f) {
     times->extract.add(r.extract_ms);
     times->wait.add(r.lock_wait_ms);
+    if (score) {
+      if (!scored->first_stamp) scored->first_stamp = f.stamp;
+      if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);
+    }
     *last = r;
-    report(r);
+    report(r, f);
   };
   const OfflineResult result = runOffline(tracker, input.frames, options);
   const bmp::Trajectory& groundtruth = input.groundtruth;
@@ -203,6 +235,7 @@ int runBenchTracker(const bmp::ArgParser& args) {
     bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
   printRunSummary(result, *times);
   printAte(args, result.trajectory, groundtruth);
+  if (score) printMaskScore(*scored);
   return 0;
 }
 
@@ -227,7 +260,11 @@ void addBenchTrackerOptions(ArgParser& args) {
   args.addFlag("detector",
                "give the tracker the detector's boxes (config/detector.yaml), found for every frame before "
                "tracking starts (untimed): the dynamic stage at work, as in a lockstep run");
+  args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
+  args.addFlag("score-masks",
+               "score the dynamic stage against DIR/mask/*.png: recall (keypoints on movers kept out), "
+               "precision, static keypoints kept out");
   args.addFlag("verbose", "print every frame's state, not every 100th");
 }
 

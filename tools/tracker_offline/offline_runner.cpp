@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -20,14 +21,14 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     input.seq = seq++;
     input.image = frame->image;
     input.depth = frame->depth;
-    input.exclusion_mask = frame->exclusion_mask;
+    if (options.exclude_movers) input.exclusion_mask = frame->mover_mask;
     input.boxes = frame->boxes;
     TrackResult r = tracker.track(input);
     out.track_ms.add(r.processing_ms);
     out.frames_lost += r.state == TrackingState::kLost;
     out.lost_at_end = r.state == TrackingState::kLost;
     ++out.frames;
-    if (options.on_result) options.on_result(r);
+    if (options.on_result) options.on_result(r, *frame);
     if (options.keep_results) out.results.push_back(std::move(r));
   }
   tracker.finish();
@@ -36,11 +37,11 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
   return out;
 }
 
-FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth, bool use_masks) {
+FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth, bool load_masks) {
   auto index = std::make_shared<capture::SequenceIndex>(capture::indexSequence(dir));
   if (groundtruth) *groundtruth = index->groundtruth;
   auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
-  return [index, position, use_masks]() -> std::optional<OfflineFrame> {
+  return [index, position, load_masks]() -> std::optional<OfflineFrame> {
     while (*position < index->frames.size()) {
       const auto& pair = index->frames[(*position)++];
       if (!std::filesystem::exists(pair.rgb_path) || !std::filesystem::exists(pair.depth_path)) continue;
@@ -49,10 +50,13 @@ FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* gro
       f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
       f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
       if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1) continue;
-      if (use_masks) {
+      if (load_masks) {
         const auto mask =
             std::filesystem::path(index->dir) / "mask" / std::filesystem::path(pair.rgb_path).filename();
-        f.exclusion_mask = cv::imread(mask.string(), cv::IMREAD_GRAYSCALE);
+        f.mover_mask = cv::imread(mask.string(), cv::IMREAD_GRAYSCALE);
+        if (f.mover_mask.size() != f.image.size())
+          throw std::runtime_error(mask.string() + ": missing, unreadable or not the size of " +
+                                   pair.rgb_path);
       }
       return f;
     }

@@ -18,16 +18,18 @@ struct OfflineFrame {
   double stamp = 0.0;
   cv::Mat image;                                // BGR or gray
   cv::Mat depth;                                // CV_16UC1 or CV_32FC1 metres
-  cv::Mat exclusion_mask;                       // optional CV_8UC1: keypoints on nonzero pixels take no part
+  cv::Mat mover_mask;                           // optional CV_8UC1: nonzero on things that move (the truth)
   std::optional<std::vector<ObjectBox>> boxes;  // the detector's, when known (the dynamic stage's input)
 };
 // Returns the next frame, or nullopt at the end.
 using FrameProvider = std::function<std::optional<OfflineFrame>()>;
 
 struct OfflineOptions {
-  int max_frames = -1;                                // <0: all
-  std::function<void(const TrackResult&)> on_result;  // e.g. progress output
-  bool keep_results = true;  // false: OfflineResult::results stays empty (long runs that measure memory)
+  int max_frames = -1;  // <0: all
+  // Called after each frame with its result and the frame itself (e.g. progress output, scoring).
+  std::function<void(const TrackResult&, const OfflineFrame&)> on_result;
+  bool exclude_movers = false;  // the frames' mover masks exclude keypoints: an oracle dynamic stage
+  bool keep_results = true;     // false: OfflineResult::results stays empty (long runs that measure memory)
 };
 
 struct OfflineResult {
@@ -45,9 +47,9 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
 // Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), starting
 // at `start`; pairs whose files are missing or unreadable are skipped. groundtruth receives the folder's
 // ground truth when not null.
-// With use_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) becomes the exclusion mask: an oracle
-// for the dynamic-object stage.
+// With load_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) is each frame's mover mask; a folder
+// with load_masks and no such file is an error naming it.
 FrameProvider tumFolderFrames(const std::string& dir, int start = 0, Trajectory* groundtruth = nullptr,
-                              bool use_masks = false);
+                              bool load_masks = false);
 
 }  // namespace bmp::tracker

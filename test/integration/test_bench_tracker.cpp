@@ -1,0 +1,96 @@
+// bmp-bench-tracker's scoring of the dynamic stage against bmp-synth's masks (what tools/bench puts in its
+// recall / precision column): real detector, real tracker, a rendered scenario with people.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "bmp/common/child_process.hpp"
+#include "integration_support.hpp"
+
+namespace bmp {
+namespace {
+
+namespace fs = std::filesystem;
+using test::binPath;
+
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 240) {
+  const fs::path log = test::scratchDir("bench_" + name) / "out.log";
+  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
+  Outcome o;
+  o.status = child.wait(timeout_s).value_or(-1);
+  o.output = test::readText(log.string());
+  return o;
+}
+
+// The number after `label` in the summary, or -1.
+double figure(const std::string& output, const std::string& label) {
+  std::smatch m;
+  if (!std::regex_search(output, m, std::regex(label + R"(\s+([0-9.]+))"))) return -1.0;
+  return std::stod(m[1]);
+}
+
+// 90 frames (3 s) of people walking, rendered into the running test's own scratch folder (ctest runs the
+// cases as separate processes side by side, so none shares a folder).
+fs::path writeScenario() {
+  const fs::path folder = test::scratchDir("people_walking") / "seq";
+  const Outcome o = runCommand(
+      "synth", {binPath("bmp-synth"), "--config", test::sourceDir() + "/config/synthetic/people_walking.yaml",
+                "--out", folder.string(), "--frames", "90"});
+  EXPECT_EQ(o.status, 0) << o.output;
+  return folder;
+}
+
+Outcome score(const std::string& name, const std::string& mode, const fs::path& folder) {
+  return runCommand(name, {binPath("bmp-bench-tracker"), "--dataset", folder.string(), "--detector",
+                           "--inline-mapping", "--score-masks", "--dynamic-mode", mode});
+}
+
+// The default variant keeps most keypoints on the people out and few static ones; the static variant keeps
+// none out, so its recall is 0 and it cannot look good by accident.
+TEST(BenchTrackerScore, DepthVariantKeepsPeopleOutAndNoneKeepsNothingOut) {
+  const fs::path folder = writeScenario();
+  const Outcome depth = score("depth", "depth", folder);
+  ASSERT_EQ(depth.status, 0) << depth.output;
+  EXPECT_GE(figure(depth.output, "dynamic recall"), 0.6) << depth.output;
+  EXPECT_GE(figure(depth.output, "dynamic precision"), 0.6) << depth.output;
+  EXPECT_LE(figure(depth.output, "static kept out"), 0.1) << depth.output;
+  EXPECT_GE(figure(depth.output, "keypoints scored"), 500) << depth.output;  // on movers, over 2 s
+  EXPECT_LT(figure(depth.output, "ATE rmse m"), 0.02) << depth.output;
+
+  const Outcome none = score("none", "none", folder);
+  ASSERT_EQ(none.status, 0) << none.output;
+  EXPECT_EQ(figure(none.output, "dynamic recall"), 0.0) << none.output;
+  EXPECT_EQ(figure(none.output, "static kept out"), 0.0) << none.output;
+}
+
+// A mask missing from the folder is an error naming the file, not a frame silently scored as all static.
+TEST(BenchTrackerScore, AMissingMaskIsAnErrorNamingIt) {
+  const fs::path folder = writeScenario();
+  std::vector<fs::path> masks;
+  for (const auto& e : fs::directory_iterator(folder / "mask")) masks.push_back(e.path());
+  ASSERT_FALSE(masks.empty());
+  std::sort(masks.begin(), masks.end());
+  const fs::path gone = masks[masks.size() / 2];
+  fs::remove(gone);
+  const Outcome o = score("missing_mask", "depth", folder);
+  EXPECT_NE(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find(gone.string()), std::string::npos) << o.output;
+}
+
+TEST(BenchTrackerScore, AnUnknownDynamicModeIsAnErrorNamingTheOption) {
+  const Outcome o = score("bad_mode", "sometimes", writeScenario());
+  EXPECT_NE(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("--dynamic-mode"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace bmp

@@ -1,0 +1,30 @@
+#pragma once
+// The dynamic stage scored against the truth: each keypoint is on a mover or on the static scene (a mask,
+// nonzero on movers), and the stage kept it out or not.
+#include <opencv2/core.hpp>
+
+#include "tracker/tracker.hpp"
+
+namespace bmp::tracker {
+
+class KeypointScore {
+ public:
+  // Counts the result's keypoints against `movers` (CV_8UC1, nonzero on movers, the image's size); keypoints
+  // outside the image are not counted.
+  void add(const TrackResult& result, const cv::Mat& movers);
+
+  long onMovers() const { return mover_; }
+  long onStatic() const { return static_; }
+  long flagged() const { return mover_out_ + static_out_; }
+  // Of the keypoints kept out, the share on movers (1 when none was kept out).
+  double precision() const;
+  // Of the keypoints on movers, the share kept out (1 when none was on a mover).
+  double recall() const;
+  // Of the keypoints on the static scene, the share kept out: background lost to the pose.
+  double staticKeptOut() const;
+
+ private:
+  long mover_ = 0, mover_out_ = 0, static_ = 0, static_out_ = 0;
+};
+
+}  // namespace bmp::tracker
