@@ -31,6 +31,7 @@ DetectorSettings detectorSettingsFromConfig(const Config& config,
   const Config process = config.section("process");
   const std::string mode = process.get<std::string>("mode", "latest");
   const int capacity = process.get<int>("queue_capacity", static_cast<int>(s.queue_capacity));
+  s.latest_nice = process.get<int>("latest_nice", s.latest_nice);
   const Config channels = config.section("channels");
   s.frames_channel = channels.get<std::string>("frames", channels::kFrames);
   s.detections_channel = channels.get<std::string>("detections", channels::kDetections);
@@ -45,6 +46,7 @@ DetectorSettings detectorSettingsFromConfig(const Config& config,
   process.check(mode_error.empty(), "mode", "or --mode: " + mode_error);
   process.check(capacity >= 1, "queue_capacity", "must be >= 1");
   s.queue_capacity = static_cast<std::size_t>(capacity);
+  process.check(s.latest_nice >= 0 && s.latest_nice <= 19, "latest_nice", "must be in [0, 19]");
   return s;
 }
 

@@ -1,8 +1,13 @@
 // bmp-detector: YOLO boxes, each tagged with its dynamic level, for every RGB-D frame it processes. The
 // algorithm is detector::Detector, its LCM side DetectorNode (lcm/); this file reads settings, runs the node.
+#include <sys/resource.h>
+
+#include <cerrno>
+#include <cstring>
 #include <optional>
 #include <string>
 
+#include "bmp/common/log.hpp"
 #include "bmp/lcm/process.hpp"
 #include "detector/detector_settings.hpp"
 #include "detector/lcm/detector_node.hpp"
@@ -12,11 +17,25 @@ namespace {
 using namespace bmp;
 using namespace bmp::detector;
 
+// Real time: the detector yields the CPU to the tracker (settings.latest_nice). Set before the node starts
+// its threads, which inherit it; never raises the priority of a process started nicer.
+void yieldInRealTime(const DetectorSettings& settings) {
+  if (settings.mode != QueueMode::kLatest || settings.latest_nice <= 0) return;
+  errno = 0;
+  const int current = getpriority(PRIO_PROCESS, 0);
+  if (errno == 0 && current >= settings.latest_nice) return;
+  if (setpriority(PRIO_PROCESS, 0, settings.latest_nice) != 0)
+    log::warn("could not set nice ", settings.latest_nice, ": ", std::strerror(errno));
+  else
+    log::info("nice ", settings.latest_nice, " (mode latest: the tracker's poses come first)");
+}
+
 int run(ProcessContext& ctx) {
   const auto mode =
       ctx.args.given("mode") ? std::optional<std::string>(ctx.args.value("mode")) : std::nullopt;
   const DetectorSettings settings = detectorSettingsFromConfig(ctx.config, mode, configDir());
   finishConfig(ctx);  // unknown keys are refused before the model loads
+  yieldInRealTime(settings);
   DetectorNode node(ctx, settings);
   ctx.status.tick(true);  // the first heartbeat also tells others we are subscribed
   return node.run();

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -61,7 +63,7 @@ std::vector<BonnFrame> bonnFrames(std::size_t first, std::size_t n) {
 rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
   rgbd_frame_t msg;
   msg.seq = seq;
-  msg.utime = static_cast<int64_t>(frame.stamp * 1e6 + 0.5);
+  msg.utime = static_cast<int64_t>(std::llround(frame.stamp * 1e6));
   msg.depth_utime = msg.utime;
   msg.source = "rgbd_bonn_crowd";
   // The frame contract asks for the camera; the detector refuses frames without usable intrinsics.
@@ -196,6 +198,42 @@ TEST_F(DetectorProcess, EveryModeAnswersEachFrameAndSkipsAnUndecodableOne) {
   EXPECT_NE(log().find("frame seq " + std::to_string(kBadSeq) + ": colour image: undecodable"),
             std::string::npos)
       << log();
+}
+
+// The nice value of each of a process's threads (/proc/PID/task/TID/stat, field 19).
+std::vector<int> threadNiceValues(pid_t pid) {
+  std::vector<int> nice;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
+    std::ifstream in(task.path() / "stat");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::istringstream fields(text.substr(text.rfind(')') + 2));  // after "pid (comm) "
+    std::string field;
+    for (int i = 3; i <= 19 && fields >> field; ++i)
+      if (i == 19) nice.push_back(std::stoi(field));
+  }
+  return nice;
+}
+
+int ownNice() {
+  return threadNiceValues(::getpid()).front();
+}
+
+// Real time: the detector yields the CPU to the tracker (process.latest_nice, 10): the main thread and the
+// threads it starts afterwards (the inference worker) run at nice 10. Lockstep ('every') is left alone.
+TEST_F(DetectorProcess, LatestModeRunsNicer) {
+  ASSERT_NO_FATAL_FAILURE(start("latest", 3));
+  const std::vector<int> nice = threadNiceValues(child_->pid());
+  const int wanted = std::max(10, ownNice());  // a test run started nicer stays so
+  EXPECT_GE(std::count(nice.begin(), nice.end(), wanted), 2) << "main thread and worker";
+  stop();
+}
+
+TEST_F(DetectorProcess, EveryModeKeepsItsPriority) {
+  ASSERT_NO_FATAL_FAILURE(start("every", 4));
+  const std::vector<int> nice = threadNiceValues(child_->pid());
+  ASSERT_FALSE(nice.empty());
+  EXPECT_EQ(std::count(nice.begin(), nice.end(), ownNice()), static_cast<long>(nice.size()));
+  stop();
 }
 
 TEST_F(DetectorProcess, LatestModeWorksOnTheNewestFrameAndCountsDrops) {

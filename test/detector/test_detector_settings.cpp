@@ -26,6 +26,8 @@ TEST(DetectorSettings, RepositoryFileGivesTheDocumentedDefaults) {
   const DetectorSettings s = detectorSettingsFromConfig(config, std::nullopt, "/unused");
   EXPECT_EQ(s.mode, QueueMode::kLatest);
   EXPECT_EQ(s.queue_capacity, 64u);
+  EXPECT_EQ(s.latest_nice, 10);
+  EXPECT_EQ(s.latest_nice, DetectorSettings{}.latest_nice);
   EXPECT_EQ(s.frames_channel, "RGBD_FRAME");
   EXPECT_EQ(s.detections_channel, "DETECTIONS");
   EXPECT_EQ(s.detector.input_size, 320);
@@ -36,12 +38,13 @@ TEST(DetectorSettings, RepositoryFileGivesTheDocumentedDefaults) {
 TEST(DetectorSettings, ReadsProcessAndChannelsAndTheModeOverride) {
   const auto config = Config::fromString(
       "dynamic_classes: levels.yaml\n"
-      "process: {mode: every, queue_capacity: 3}\n"
+      "process: {mode: every, queue_capacity: 3, latest_nice: 0}\n"
       "channels: {frames: F, detections: D}\n",
       "(test)");
   DetectorSettings s = detectorSettingsFromConfig(config, std::nullopt, "/configs");
   EXPECT_EQ(s.mode, QueueMode::kEvery);
   EXPECT_EQ(s.queue_capacity, 3u);
+  EXPECT_EQ(s.latest_nice, 0);
   EXPECT_EQ(s.frames_channel, "F");
   EXPECT_EQ(s.detections_channel, "D");
   EXPECT_EQ(s.dynamic_classes_path, "/configs/levels.yaml");  // not a file: the fallback folder
@@ -70,6 +73,14 @@ TEST(DetectorSettings, BadQueueCapacityIsAConfigErrorNamingFileAndKey) {
   const std::string msg = configErrorOf([&] { detectorSettingsFromConfig(wrong_type, std::nullopt, "/"); });
   EXPECT_NE(msg.find("t.yaml"), std::string::npos) << msg;
   EXPECT_NE(msg.find("process.queue_capacity"), std::string::npos) << msg;
+}
+
+TEST(DetectorSettings, NiceOutsideZeroToNineteenIsAConfigError) {
+  for (const char* yaml : {"process: {latest_nice: -1}", "process: {latest_nice: 20}"}) {
+    const auto config = Config::fromString(yaml, "n.yaml");
+    const std::string msg = configErrorOf([&] { detectorSettingsFromConfig(config, std::nullopt, "/"); });
+    EXPECT_EQ(msg, "n.yaml: key 'process.latest_nice' must be in [0, 19]") << yaml;
+  }
 }
 
 TEST(DetectorSettings, ParsesQueueModes) {
