@@ -84,6 +84,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
     result.reference_keyframe_id = reference_kf_ ? reference_kf_->id : -1;
     result.num_dynamic = frame.numDynamic();
     result.keypoint_dynamic = frame.dynamic;
+    result.keypoint_in_region.assign(frame.box_z.begin(), frame.box_z.end());
     result.keypoints.reserve(frame.features->keys.size());
     for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
     if (result.new_keyframe)

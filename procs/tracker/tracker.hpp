@@ -54,6 +54,8 @@ struct TrackResult {
   // stage against ground-truth masks (precision, recall).
   std::vector<cv::Point2f> keypoints;
   std::vector<uint8_t> keypoint_dynamic;
+  // The region test's verdict on each keypoint this frame (empty: no boxes), to tell why one was missed.
+  std::vector<uint8_t> keypoint_in_region;
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
   double processing_ms = 0.0;  // the whole call

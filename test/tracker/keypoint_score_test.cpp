@@ -10,14 +10,15 @@ TEST(KeypointScore, CountsKeypointsOnMoversAndOnTheStaticSceneAgainstTheMask) {
   cv::Mat movers = cv::Mat::zeros(10, 20, CV_8UC1);
   movers(cv::Rect(0, 0, 10, 10)).setTo(255);
   TrackResult r;
-  const auto add = [&r](float x, float y, bool out) {
+  const auto add = [&r](float x, float y, bool out, bool in_region) {
     r.keypoints.emplace_back(x, y);
     r.keypoint_dynamic.push_back(out ? 1 : 0);
+    r.keypoint_in_region.push_back(in_region ? 1 : 0);
   };
-  add(1, 1, true), add(2, 5, true), add(9.4F, 9, true), add(5, 5, false);                    // on the mover
-  add(10, 1, true), add(12, 5, false), add(15, 5, false), add(19, 9, false), add(11, 0, false),  // static
-  add(18, 3, false);
-  add(25, 5, true), add(-1, 3, true);  // outside the image: not counted
+  add(1, 1, true, true), add(2, 5, true, false), add(9.4F, 9, true, true), add(5, 5, false, true);  // mover
+  add(10, 1, true, true), add(12, 5, false, true), add(15, 5, false, false), add(19, 9, false, false),
+      add(11, 0, false, false), add(18, 3, false, false);  // static
+  add(25, 5, true, true), add(-1, 3, true, true);          // outside the image: not counted
   KeypointScore score;
   score.add(r, movers);
   EXPECT_EQ(score.onMovers(), 4);
@@ -26,9 +27,19 @@ TEST(KeypointScore, CountsKeypointsOnMoversAndOnTheStaticSceneAgainstTheMask) {
   EXPECT_DOUBLE_EQ(score.precision(), 3.0 / 4.0);
   EXPECT_DOUBLE_EQ(score.recall(), 3.0 / 4.0);
   EXPECT_DOUBLE_EQ(score.staticKeptOut(), 1.0 / 6.0);
+  EXPECT_EQ(score.missedOutsideRegions(), 0);
+  EXPECT_EQ(score.missedInsideRegions(), 1);  // (5, 5): its region said moving, its history held it
+  EXPECT_EQ(score.staticOutInsideRegions(), 1);
+  EXPECT_EQ(score.staticOutByHistory(), 0);
+  r.keypoint_in_region.clear();  // a frame without boxes: every miss is outside the regions
+  KeypointScore without;
+  without.add(r, movers);
+  EXPECT_EQ(without.missedOutsideRegions(), 1);
+  EXPECT_EQ(without.staticOutByHistory(), 1);
   score.add(r, movers);  // counts add up over frames
   EXPECT_EQ(score.onMovers(), 8);
   EXPECT_DOUBLE_EQ(score.recall(), 3.0 / 4.0);
+  EXPECT_EQ(score.missedOutsideRegions(), 1);
 }
 
 TEST(KeypointScore, NothingKeptOutAndNoMoverGiveOneNotNaN) {

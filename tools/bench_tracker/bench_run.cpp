@@ -87,6 +87,10 @@ void printMaskScore(const MaskScore& s) {
   std::printf("dynamic recall    %.4f (keypoints on movers kept out)\n", s.score.recall());
   std::printf("dynamic precision %.4f (keypoints kept out that are on movers)\n", s.score.precision());
   std::printf("static kept out   %.4f\n", s.score.staticKeptOut());
+  std::printf("missed on movers  %ld outside every moving region, %ld inside one (history held them)\n",
+              s.score.missedOutsideRegions(), s.score.missedInsideRegions());
+  std::printf("static out        %ld inside a moving region, %ld by history alone\n",
+              s.score.staticOutInsideRegions(), s.score.staticOutByHistory());
   std::printf("keypoints scored  %ld on movers, %ld static (from %.0f s on)\n", s.score.onMovers(),
               s.score.onStatic(), kScoreFromS);
 }

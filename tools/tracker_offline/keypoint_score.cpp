@@ -14,22 +14,34 @@ void KeypointScore::add(const TrackResult& result, const cv::Mat& movers) {
   if (movers.type() != CV_8UC1) throw std::invalid_argument("KeypointScore: the mover mask must be CV_8UC1");
   if (result.keypoint_dynamic.size() != result.keypoints.size())
     throw std::invalid_argument("KeypointScore: keypoints and their dynamic flags differ in number");
+  const bool regions = !result.keypoint_in_region.empty();
+  if (regions && result.keypoint_in_region.size() != result.keypoints.size())
+    throw std::invalid_argument("KeypointScore: keypoints and their region verdicts differ in number");
   for (std::size_t k = 0; k < result.keypoints.size(); ++k) {
     const cv::Point p(cvRound(result.keypoints[k].x), cvRound(result.keypoints[k].y));
     if (p.x < 0 || p.y < 0 || p.x >= movers.cols || p.y >= movers.rows) continue;
     const bool out = result.keypoint_dynamic[k] != 0;
+    const bool in_region = regions && result.keypoint_in_region[k] != 0;
     if (movers.at<uint8_t>(p) != 0) {
       ++mover_;
       mover_out_ += out;
+      missed_outside_ += !out && !in_region;
     } else {
       ++static_;
       static_out_ += out;
+      static_out_in_region_ += out && in_region;
     }
   }
 }
 
-double KeypointScore::precision() const { return share(mover_out_, mover_out_ + static_out_); }
-double KeypointScore::recall() const { return share(mover_out_, mover_); }
-double KeypointScore::staticKeptOut() const { return share(static_out_, static_); }
+double KeypointScore::precision() const {
+  return share(mover_out_, mover_out_ + static_out_);
+}
+double KeypointScore::recall() const {
+  return share(mover_out_, mover_);
+}
+double KeypointScore::staticKeptOut() const {
+  return share(static_out_, static_);
+}
 
 }  // namespace bmp::tracker

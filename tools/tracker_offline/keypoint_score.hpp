@@ -22,9 +22,17 @@ class KeypointScore {
   double recall() const;
   // Of the keypoints on the static scene, the share kept out: background lost to the pose.
   double staticKeptOut() const;
+  // Why: keypoints on movers not kept out, by the region test's verdict in their frame (outside every
+  // moving region, or inside one but held below the threshold by their history); static keypoints kept
+  // out, inside a moving region or by their history alone.
+  long missedOutsideRegions() const { return missed_outside_; }
+  long missedInsideRegions() const { return mover_ - mover_out_ - missed_outside_; }
+  long staticOutInsideRegions() const { return static_out_in_region_; }
+  long staticOutByHistory() const { return static_out_ - static_out_in_region_; }
 
  private:
   long mover_ = 0, mover_out_ = 0, static_ = 0, static_out_ = 0;
+  long missed_outside_ = 0, static_out_in_region_ = 0;
 };
 
 }  // namespace bmp::tracker
