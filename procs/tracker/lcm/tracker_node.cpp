@@ -95,9 +95,8 @@ void TrackerNode::onDetections(const detections_t& msg) {
   book_.add(d.seq, std::move(boxes));
 }
 
-std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& msg, bool& own) {
-  own = false;
-  if (config_.dynamic.mode == DynamicMode::kNone) return std::nullopt;
+TrackerNode::FrameBoxChoice TrackerNode::boxesFor(const rgbd_frame_t& msg) {
+  if (config_.dynamic.mode == DynamicMode::kNone) return {};
   // Without any detector on the bus, waiting would only slow every frame: wait again once one is heard.
   const bool wait = policy_.reproducible && (detections_heard_ > 0 || !warned_no_detections_);
   const auto wait_ms = std::chrono::milliseconds(wait ? static_cast<int64_t>(policy_.wait_ms) : 0);
@@ -107,20 +106,17 @@ std::optional<std::vector<ObjectBox>> TrackerNode::boxesFor(const rgbd_frame_t& 
     log::warn("no answer on ", channels_.detections, " within ", policy_.wait_ms,
               " ms: tracking without boxes until the detector is heard");
   }
-  if (got && got->usable) {
-    own = true;
-    return std::move(got->boxes);
-  }
-  if (got || wait) return std::nullopt;  // the detector skipped it, or lockstep: no stand-in
+  if (got && got->usable) return {std::move(got->boxes), true};
+  if (got || wait) return {};  // the detector skipped it, or lockstep: no stand-in
   // Real time, the answer not here yet: the newest answer before it stands in, grown for its age.
   const DynamicOptions& d = config_.dynamic;
   std::optional<FrameBoxes> before =
       book_.newestBefore(msg.seq, msg.seq - static_cast<int64_t>(book_.capacity()));
-  if (!before) return std::nullopt;
+  if (!before) return {};
   const double age_s = static_cast<double>(msg.utime - before->utime) * 1e-6;
-  if (age_s <= 0.0 || age_s > d.stale_box_max_age_s) return std::nullopt;
+  if (age_s <= 0.0 || age_s > d.stale_box_max_age_s) return {};
   ++stale_boxes_used_;
-  return grownForAge(std::move(before->boxes), age_s, d.stale_box_growth_px_per_s);
+  return {grownForAge(std::move(before->boxes), age_s, d.stale_box_growth_px_per_s), false};
 }
 
 void TrackerNode::releaseHeldKeyframes(bool all) {
@@ -234,12 +230,12 @@ void TrackerNode::process(const Queued& frame) {
   input.seq = msg.seq;
   input.image = color;
   input.depth = depth;
-  bool own_boxes = false;
-  input.boxes = boxesFor(msg, own_boxes);
+  FrameBoxChoice choice = boxesFor(msg);
+  input.boxes = std::move(choice.boxes);
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
-  publish(msg, r, color, depth, own_boxes);
+  publish(msg, r, color, depth, choice.own);
   ctx_.status.processed();
 }
 

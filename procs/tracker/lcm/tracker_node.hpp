@@ -69,8 +69,12 @@ class TrackerNode {
   void refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict);  // likewise
   void process(const Queued& frame);
   void onDetections(const detections_t& msg);
-  // The frame's boxes (own: its own answer), or in real time the newest earlier ones grown for their age.
-  std::optional<std::vector<ObjectBox>> boxesFor(const rgbd_frame_t& msg, bool& own);
+  // The frame's boxes: its own answer, or in real time the newest earlier ones grown for their age.
+  struct FrameBoxChoice {
+    std::optional<std::vector<ObjectBox>> boxes;  // none: the frame is tracked on its priors alone
+    bool own = false;                             // the frame's own answer (not a stand-in)
+  };
+  FrameBoxChoice boxesFor(const rgbd_frame_t& msg);
   // Real time: publishes held keyframes whose answer came (with late boxes applied) or whose time is up.
   void releaseHeldKeyframes(bool all);
   void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth,
