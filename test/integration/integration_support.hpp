@@ -2,11 +2,13 @@
 // Helpers for tests that run the real processes over a real udpm:// LCM URL.
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bmp/common/child_process.hpp"
 #include "lcm_url.hpp"
 #include "shared_data.hpp"
 
@@ -31,6 +33,21 @@ inline std::string readText(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A command run to its end (or killed after timeout_s): its exit status (-1: timed out) and its output.
+struct Outcome {
+  int status = -1;
+  std::string output;
+};
+
+inline Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 60) {
+  const std::filesystem::path log = scratchDir("cmd_" + name) / "out.log";
+  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
+  Outcome o;
+  o.status = child.wait(timeout_s).value_or(-1);
+  o.output = readText(log.string());
+  return o;
 }
 
 }  // namespace bmp::test

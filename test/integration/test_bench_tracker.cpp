@@ -17,19 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::binPath;
 
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
-
-Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 240) {
-  const fs::path log = test::scratchDir("bench_" + name) / "out.log";
-  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
-  Outcome o;
-  o.status = child.wait(timeout_s).value_or(-1);
-  o.output = test::readText(log.string());
-  return o;
-}
+using test::Outcome;
+using test::runCommand;
+constexpr double kTimeoutS = 240;  // the detector over 90 frames on a loaded 2-core machine
 
 // The number after `label` in the summary, or -1.
 double figure(const std::string& output, const std::string& label) {
@@ -43,15 +33,19 @@ double figure(const std::string& output, const std::string& label) {
 fs::path writeScenario() {
   const fs::path folder = test::scratchDir("people_walking") / "seq";
   const Outcome o = runCommand(
-      "synth", {binPath("bmp-synth"), "--config", test::sourceDir() + "/config/synthetic/people_walking.yaml",
-                "--out", folder.string(), "--frames", "90"});
+      "synth",
+      {binPath("bmp-synth"), "--config", test::sourceDir() + "/config/synthetic/people_walking.yaml", "--out",
+       folder.string(), "--frames", "90"},
+      kTimeoutS);
   EXPECT_EQ(o.status, 0) << o.output;
   return folder;
 }
 
 Outcome score(const std::string& name, const std::string& mode, const fs::path& folder) {
-  return runCommand(name, {binPath("bmp-bench-tracker"), "--dataset", folder.string(), "--detector",
-                           "--inline-mapping", "--score-masks", "--dynamic-mode", mode});
+  return runCommand(name,
+                    {binPath("bmp-bench-tracker"), "--dataset", folder.string(), "--detector",
+                     "--inline-mapping", "--score-masks", "--dynamic-mode", mode},
+                    kTimeoutS);
 }
 
 // The default variant keeps most keypoints on the people out and few static ones; the static variant keeps

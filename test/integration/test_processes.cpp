@@ -21,19 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::binPath;
 
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
-
-Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 60) {
-  const fs::path log = test::scratchDir("cmd_" + name) / "out.log";
-  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
-  Outcome o;
-  o.status = child.wait(timeout_s).value_or(-1);
-  o.output = test::readText(log.string());
-  return o;
-}
+using test::Outcome;
+using test::runCommand;
 
 // Every executable we ship answers --help with a usage text and exit status 0.
 TEST(Processes, EveryBinaryAnswersHelp) {
