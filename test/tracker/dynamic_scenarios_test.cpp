@@ -92,34 +92,16 @@ Score run(const std::string& scenario, DynamicMode mode) {
 
 // People the detector knows, walking through the view: the default variant (boxes cut to the person by
 // depth, Bayesian probability) keeps most of their keypoints out and few static ones, and the trajectory
-// within 5 mm (3.9 mm when this was written).
-TEST(DynamicScenario, PeopleWalkingAreKeptOut) {
+// within 5 mm; without the dynamic stage the tracker is pulled along (127 mm when this was written).
+TEST(DynamicScenario, PeopleWalkingAreKeptOutAndTheStaticVariantIsWorse) {
   const Score depth = run("people_walking", DynamicMode::kDepth);
   EXPECT_GE(depth.recall(depth.known_out, depth.known_on), 0.80);
   EXPECT_LE(depth.recall(depth.static_out, depth.static_on), 0.05);
   EXPECT_LT(depth.ate, 0.005);
   EXPECT_EQ(depth.lost, 0);
-}
-
-// A crowd covering over half the view: without the dynamic stage the tracker follows it (733 mm when this
-// was written), with it the trajectory stays within 1 cm (8.4 mm).
-TEST(DynamicScenario, TheCrowdPullsTheStaticVariantAlongButNotTheDynamicStage) {
-  const Score depth = run("crowd", DynamicMode::kDepth);
-  EXPECT_LT(depth.ate, 0.010);
-  EXPECT_GE(depth.recall(depth.known_out, depth.known_on), 0.80);
-  EXPECT_LE(depth.recall(depth.static_out, depth.static_on), 0.05);
-  const Score none = run("crowd", DynamicMode::kNone);
+  const Score none = run("people_walking", DynamicMode::kNone);
   EXPECT_EQ(none.known_out + none.static_out, 0);
-  EXPECT_GT(none.ate, 10.0 * depth.ate) << "the static variant should be clearly worse";
-}
-
-// A mover the detector does not know (a textured box) beside a person it does: keeping the person out must
-// not leave the box to pull the pose (275 mm while points had to be seen over 1 s to count fully; 4.3 mm
-// without that rule).
-TEST(DynamicScenario, AnUnknownMoverDoesNotPullThePose) {
-  const Score depth = run("unknown_mover", DynamicMode::kDepth);
-  EXPECT_LT(depth.ate, 0.010);
-  EXPECT_EQ(depth.lost, 0);
+  EXPECT_GT(none.ate, 3.0 * depth.ate) << "the static variant should be clearly worse";
 }
 
 }  // namespace
