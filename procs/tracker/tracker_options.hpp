@@ -59,7 +59,7 @@ struct PoseOptimizerOptions {
   double consensus_chi2_factor = 1.0;  // inlier test while scoring hypotheses, times chi2
   int mature_observations = 3;         // keyframes that must see a point before it counts fully
   // ... spread over at least this time (first to last keyframe; 0: any). It keeps movers the detector does
-  // not know out of the pose (the default synthetic scene's boxes: 0.9 cm with 1 s, 12.8 cm without), but
+  // not know out of the pose (the default synthetic scene's boxes: 0.8 cm with 1 s, 12.8 cm without), but
   // lets a rigid mover seen all along outweigh a younger static background (unknown_mover: 275 mm with
   // 1 s, 4.3 mm without). Still open.
   double mature_span_s = 1.0;
