@@ -22,10 +22,12 @@ struct Active {
 };
 
 // Whitened residual (2 or 3 rows) and its Jacobian with respect to a left increment (omega, v) of the pose:
-// p' = exp(omega) p + v, so dp/d(omega, v) = [-[p]x | I].
+// p' = exp(omega) p + v, so dp/d(omega, v) = [-[p]x | I]. Returns the rows, 0 when the point is behind the
+// camera.
 int residualAndJacobian(const SE3& T, const Active& a, const PoseCamera& c, double* r,
                         Eigen::Matrix<double, 3, 6>* J) {
   const Eigen::Vector3d p = T * a.obs->p_world;
+  if (p.z() <= 0.0) return 0;
   const double inv_z = 1.0 / p.z();
   const double u = c.fx * p.x() * inv_z + c.cx, v = c.fy * p.y() * inv_z + c.cy;
   const int rows = a.obs->u_right >= 0.0 ? 3 : 2;
@@ -60,8 +62,8 @@ double totalCost(const SE3& T, const std::vector<Active>& active, const PoseCame
   double cost = 0.0;
   double r[3];
   for (const auto& a : active) {
-    if ((T * a.obs->p_world).z() <= 0.0) return INFINITY;
     const int rows = residualAndJacobian(T, a, c, r, nullptr);
+    if (rows == 0) return INFINITY;  // a step that puts a point behind the camera is refused
     double s = 0.0;
     for (int i = 0; i < rows; ++i) s += r[i] * r[i];
     cost += huber(s, a.delta2);

@@ -24,16 +24,19 @@ void addTrackerOptions(ArgParser& args) {
       "  bmp-tracker --trajectory out/trajectory.txt --keyframe-trajectory out/keyframes.txt\n");
 }
 
+void applyDynamicModeOption(const ArgParser& args, TrackerConfig& config) {
+  if (!args.given("dynamic-mode")) return;
+  try {
+    config.dynamic.mode = parseDynamicMode(args.value("dynamic-mode"));
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(std::string("--dynamic-mode: ") + e.what());
+  }
+}
+
 namespace {
 
 void applyOptions(const ArgParser& args, TrackerSettings& s) {
-  if (args.given("dynamic-mode")) {
-    try {
-      s.tracker.dynamic.mode = parseDynamicMode(args.value("dynamic-mode"));
-    } catch (const std::invalid_argument& e) {
-      throw ConfigError(std::string("--dynamic-mode: ") + e.what());
-    }
-  }
+  applyDynamicModeOption(args, s.tracker);
   const std::string policy = args.value("frame-policy");
   if (policy != "every" && policy != "latest")
     throw ConfigError("--frame-policy: must be every or latest, got '" + policy + "'");

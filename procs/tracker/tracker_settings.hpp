@@ -40,6 +40,9 @@ struct TrackerSettings {
 // --idle-exit) and --help epilog.
 void addTrackerOptions(ArgParser& args);
 
+// --dynamic-mode, when given, over config.dynamic.mode (ConfigError naming the option for a bad name).
+void applyDynamicModeOption(const ArgParser& args, TrackerConfig& config);
+
 // Reads sections "tracker" (trackerConfigFromConfig) and "process" of config. Throws ConfigError naming the
 // file and key for a wrong type or value; unknown keys are left for the caller's Config::finish().
 // With args, --frame-policy and --dynamic-mode override the file (ConfigError naming the option).

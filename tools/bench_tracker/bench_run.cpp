@@ -36,13 +36,7 @@ TrackerConfig loadConfig(const bmp::ArgParser& args) {
     file.finish();
   }
   if (args.flag("inline-mapping")) config.mapping.threaded = false;
-  if (args.given("dynamic-mode")) {
-    try {
-      config.dynamic.mode = parseDynamicMode(args.value("dynamic-mode"));
-    } catch (const std::invalid_argument& e) {
-      throw bmp::ArgError(std::string("--dynamic-mode: ") + e.what());
-    }
-  }
+  applyDynamicModeOption(args, config);
   return config;
 }
 
@@ -158,7 +152,8 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start,
   return all;
 }
 
-PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last) {
+// detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
+PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
   const bool masks = args.flag("oracle-masks") || args.flag("score-masks");
@@ -181,7 +176,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       out.groundtruth.push_back(shifted);
     }
   auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
-      args.flag("detector") ? detectAll(dir, start, maxFrames(args)) : std::vector<std::vector<ObjectBox>>{});
+      detect ? detectAll(dir, start, maxFrames(args)) : std::vector<std::vector<ObjectBox>>{});
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
   auto in_pass = std::make_shared<std::size_t>(0);
@@ -213,9 +208,11 @@ int runBenchTracker(const bmp::ArgParser& args) {
   const bmp::capture::SequenceCamera selected =
       bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
   std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
-  Tracker tracker(selected.intrinsics, loadConfig(args));
+  const TrackerConfig config = loadConfig(args);
+  Tracker tracker(selected.intrinsics, config);
   auto last = std::make_shared<TrackResult>();
-  const PassedFrames input = passedFrames(args, last);
+  const PassedFrames input =
+      passedFrames(args, last, args.flag("detector") && config.dynamic.mode != DynamicMode::kNone);
   OfflineOptions options = offlineOptions(args);
   auto times = std::make_shared<FrameTimes>();
   auto scored = std::make_shared<MaskScore>();
