@@ -14,7 +14,8 @@ double support(const SE3& T, const std::vector<PoseObservation>& obs, const Pose
   for (const auto& ob : obs) {
     if (ob.weight <= 0.0) continue;
     const double limit = o.consensus_chi2_factor * (ob.u_right >= 0.0 ? o.chi2_rgbd : o.chi2_mono);
-    if (poseChi2(T, ob, cam) < limit) n += ob.weight;
+    const double chi2 = poseChi2(T, ob, cam);
+    if (chi2 < limit) n += o.consensus_graded ? ob.weight * (1.0 - chi2 / limit) : ob.weight;
   }
   return n;
 }

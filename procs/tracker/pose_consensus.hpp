@@ -4,6 +4,9 @@
 // constrained directions). Before optimising, hypotheses from three matches with depth (rigid alignment of
 // the back-projected keypoints to their map points) compete with the prediction on how many observations
 // they explain; the winner starts the optimisation and the matches it does not explain start as outliers.
+// With consensus_graded, each explained match counts by how well (1 - chi2 / limit, as MSAC scores): a
+// near rigid mover (a pushed cart) and the far background can both sit within the limit of the wrong
+// motion, which then explains more matches than the right one, but explains them worse.
 #include <vector>
 
 #include "bmp/common/se3.hpp"

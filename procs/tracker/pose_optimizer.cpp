@@ -17,8 +17,12 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 struct Active {
   const PoseObservation* obs;
-  double sqrt_info;  // sqrt(information * weight): whitens the residual
-  double delta2;     // Huber threshold on the squared whitened residual; <= 0: plain least squares
+  double sqrt_info;  // sqrt(information): whitens the residual
+  // Scales the robust cost. Folded into the whitening it would move the Huber threshold too: a young
+  // point's (weight 0.05) would sit 4.5 times further out, and a group of them moving together would pull
+  // the pose unchecked.
+  double weight;
+  double delta2;  // Huber threshold on the squared whitened residual; <= 0: plain least squares
 };
 
 // Whitened residual (2 or 3 rows) and its Jacobian with respect to a left increment (omega, v) of the pose:
@@ -66,7 +70,7 @@ double totalCost(const SE3& T, const std::vector<Active>& active, const PoseCame
     if (rows == 0) return INFINITY;  // a step that puts a point behind the camera is refused
     double s = 0.0;
     for (int i = 0; i < rows; ++i) s += r[i] * r[i];
-    cost += huber(s, a.delta2);
+    cost += a.weight * huber(s, a.delta2);
   }
   return cost;
 }
@@ -96,7 +100,7 @@ void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCam
       const int rows = residualAndJacobian(T, a, c, r, &J);
       double s = 0.0;
       for (int i = 0; i < rows; ++i) s += r[i] * r[i];
-      const double w = huberWeight(s, a.delta2);
+      const double w = a.weight * huberWeight(s, a.delta2);
       const auto Jr = J.topRows(rows);
       H.noalias() += w * Jr.transpose() * Jr;
       g.noalias() += w * Jr.transpose() * Eigen::Map<const Eigen::VectorXd>(r, rows);
@@ -151,7 +155,7 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
       if (o.outlier || o.weight <= 0.0) continue;
       if ((T * o.p_world).z() <= 0.0) continue;  // behind the camera: no residual; classified below
       const double delta2 = robust ? (o.u_right >= 0.0 ? options.chi2_rgbd : options.chi2_mono) : 0.0;
-      active.push_back({&o, std::sqrt(o.information * o.weight), delta2});
+      active.push_back({&o, std::sqrt(o.information), o.weight, delta2});
     }
     if (active.size() < 3) break;
     levenbergMarquardt(T, active, camera, options.iterations_per_round);

@@ -109,6 +109,7 @@ PoseOptimizerOptions poseOptions(const Config& c) {
   readPositive(c, "chi2_rgbd", o.chi2_rgbd);
   readAtLeast(c, "consensus_iterations", o.consensus_iterations, 0);
   readPositive(c, "consensus_chi2_factor", o.consensus_chi2_factor);
+  read(c, "consensus_graded", o.consensus_graded);
   readAtLeast(c, "mature_observations", o.mature_observations, 0);
   readAtLeast(c, "mature_span_s", o.mature_span_s, 0.0);
   o.young_point_weight = c.get<double>("young_point_weight", o.young_point_weight);

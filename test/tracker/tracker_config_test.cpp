@@ -74,6 +74,7 @@ void printMatcherAndPose(const TrackerConfig& c, FieldPrinter& put) {
   put("pose_optimizer.chi2_rgbd", p.chi2_rgbd);
   put("pose_optimizer.consensus_iterations", p.consensus_iterations);
   put("pose_optimizer.consensus_chi2_factor", p.consensus_chi2_factor);
+  put("pose_optimizer.consensus_graded", p.consensus_graded);
   put("pose_optimizer.mature_observations", p.mature_observations);
   put("pose_optimizer.mature_span_s", p.mature_span_s);
   put("pose_optimizer.young_point_weight", p.young_point_weight);
