@@ -62,9 +62,8 @@ struct PoseOptimizerOptions {
   bool consensus_graded = true;
   int mature_observations = 3;  // keyframes that must see a point before it counts fully
   // ... spread over at least this time (first to last keyframe; 0: any). It keeps movers the detector does
-  // not know out of the pose (the default synthetic scene's boxes: 0.8 cm with 1 s, 12.8 cm without), but
-  // lets a rigid mover seen all along outweigh a younger static background (unknown_mover: 275 mm with
-  // 1 s, 4.3 mm without). Still open.
+  // not know out of the pose (the default synthetic scene's boxes: 0.8 cm with 1 s, 12.8 cm without).
+  // unknown_mover's 275 mm, once blamed on it, came from the consensus counting matches (consensus_graded).
   double mature_span_s = 1.0;
   double young_point_weight = 0.05;  // cost weight of a younger point, pose and local BA (temporary: 0 kfs)
 };
