@@ -42,7 +42,7 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
   SE3 T_cam_world = frame.T_cam_world();
   const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
   T_cam_world = findConsensusPose(T_cam_world, obs, camera, options).T_cam_world;
-  const int inliers = optimizePose(T_cam_world, obs, {g.fx, g.fy, g.cx, g.cy, g.bf}, options);
+  const int inliers = optimizePose(T_cam_world, obs, camera, options);
   frame.setPose(T_cam_world.inverse());
   for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;
   return inliers;

@@ -2,11 +2,11 @@
 // A consensus pre-pass for pose-only optimisation. Huber alone settles between two motions when a large
 // group of matches moves differently (a person walking close to the camera pulls the pose along the weakly
 // constrained directions). Before optimising, hypotheses from three matches with depth (rigid alignment of
-// the back-projected keypoints to their map points) compete with the prediction on how many observations
-// they explain; the winner starts the optimisation and the matches it does not explain start as outliers.
-// With consensus_graded, each explained match counts by how well (1 - chi2 / limit, as MSAC scores): a
-// near rigid mover (a pushed cart) and the far background can both sit within the limit of the wrong
-// motion, which then explains more matches than the right one, but explains them worse.
+// the back-projected keypoints to their map points) compete with the prediction on the observations they
+// explain; the winner starts the optimisation and the matches it does not explain start as outliers. With
+// consensus_graded (the default) each explained match counts by how well (1 - chi2 / limit, as MSAC
+// scores), otherwise 1: a near rigid mover (a pushed cart) and the far background can both sit within the
+// limit of the wrong motion, which then explains more matches than the right one, but explains them worse.
 #include <vector>
 
 #include "bmp/common/se3.hpp"
