@@ -6,7 +6,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "tracker/key_frame.hpp"
+#include "tracker/keypoint_tracks.hpp"
 #include "tracker/map_point.hpp"
+#include "tracker/moving_clusters.hpp"
 #include "tracker/pose_optimizer.hpp"
 
 namespace bmp::tracker {
@@ -33,8 +35,14 @@ DynamicStage::DynamicStage(const DynamicOptions& options, const PoseOptimizerOpt
   bayes_.unmatched_prior = options.unmatched_prior;
   bayes_.threshold = options.threshold;
   geometric_ = bayes_;
-  geometric_.lambda = options.geo_lambda;
-  geometric_.omega = options.geo_omega;
+  geometric_.lambda = options_.geo_lambda;
+  geometric_.omega = options_.geo_omega;
+}
+
+double DynamicStage::carried(double p) const {
+  if (options_.mode != DynamicMode::kGeometric) return p;
+  const double e = options_.geo_transition;
+  return p * (1.0 - e) + (1.0 - p) * e;
 }
 
 float DynamicStage::clampProbability(double p) const {
@@ -129,7 +137,7 @@ void DynamicStage::applyPriors(Frame& frame, const FrameGeometry& g) const {
   if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
   for (int i = 0; i < frame.features->size(); ++i) {
     const auto& mp = frame.points[i];
-    const double prior = usableMatch(mp) ? mp->moving_probability : neighbourPrior(frame, g, i);
+    const double prior = carried(usableMatch(mp) ? mp->moving_probability : neighbourPrior(frame, g, i));
     const double p =
         frame.box_z.empty() ? prior : updateMovingProbability(prior, frame.box_z[i] != 0, bayes_);
     frame.moving[i] = clampProbability(p);
@@ -137,23 +145,89 @@ void DynamicStage::applyPriors(Frame& frame, const FrameGeometry& g) const {
   }
 }
 
-void DynamicStage::conclude(Frame& frame, const FrameGeometry& g) const {
-  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+bool DynamicStage::movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,
+                                    const Eigen::Vector3d& p_world) const {
   const Features& f = *frame.features;
   const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
-  for (int i = 0; i < f.size(); ++i) {
-    const auto& mp = frame.points[i];
-    if (!usableMatch(mp)) continue;
-    if (options_.mode == DynamicMode::kGeometric) {
+  const PoseObservation o{p_world, f.un[i], f.uRight(g, i), g.pyramid.inv_sigma2[f.level(i)], 1.0, false};
+  const double limit = options_.geo_chi2_factor * (o.u_right >= 0 ? pose_.chi2_rgbd : pose_.chi2_mono);
+  return poseChi2(frame.T_cam_world(), o, camera) > limit;
+}
+
+void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* last) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  const Features& f = *frame.features;
+  if (options_.mode == DynamicMode::kGeometric) {
+    // Each keypoint's verdict: -1 none, 0 where it should be, 1 moved.
+    std::vector<int8_t> verdict(static_cast<std::size_t>(f.size()), -1);
+    for (int i = 0; i < f.size(); ++i) {
+      const auto& mp = frame.points[i];
+      if (!usableMatch(mp)) continue;
       // The residual against the camera motion estimated without the dynamic keypoints.
-      const PoseObservation o{mp->p_world, f.un[i], f.uRight(g, i), g.pyramid.inv_sigma2[f.level(i)],
-                              1.0,         false};
-      const double limit = options_.geo_chi2_factor * (o.u_right >= 0 ? pose_.chi2_rgbd : pose_.chi2_mono);
-      const bool moved = poseChi2(frame.T_cam_world(), o, camera) > limit;
-      frame.moving[i] = clampProbability(updateMovingProbability(frame.moving[i], moved, geometric_));
-      frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
+      verdict[i] = movedAgainstPose(frame, g, i, mp->p_world);
+      observeGeometry(frame, i, verdict[i] != 0);
     }
-    mp->moving_probability = frame.moving[i];
+    if (last && last->features && options_.track_radius_px > 0) observeTracks(frame, g, *last, verdict);
+    if (options_.cluster_min_moved > 0) observeMovingClusters(frame, g, verdict);
+  }
+  for (int i = 0; i < f.size(); ++i)
+    if (usableMatch(frame.points[i])) frame.points[i]->moving_probability = frame.moving[i];
+}
+
+void DynamicStage::observeGeometry(Frame& frame, int i, bool moved) const {
+  frame.moving[i] = clampProbability(updateMovingProbability(frame.moving[i], moved, geometric_));
+  frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
+}
+
+void DynamicStage::observeTracks(Frame& frame, const FrameGeometry& g, const Frame& last,
+                                 std::vector<int8_t>& verdict) const {
+  const Features& f = *frame.features;
+  const Features& lf = *last.features;
+  std::vector<uint8_t> open(static_cast<std::size_t>(f.size()), 0);
+  for (int i = 0; i < f.size(); ++i) open[i] = !usableMatch(frame.points[i]) && !f.excluded[i];
+  KeypointTrackOptions to;
+  to.radius_px = options_.track_radius_px;
+  to.max_distance = options_.track_max_distance;
+  to.ratio = options_.track_ratio;
+  const std::vector<int> track = trackFromLastFrame(frame, last, g, open, to);
+  for (int i = 0; i < f.size(); ++i) {
+    const int j = track[i];
+    if (j < 0) continue;
+    // The last frame's keypoint is the prior (the paper's), updated by this frame's boxes.
+    const double prior = carried(last.moving[j]);
+    frame.moving[i] = clampProbability(
+        frame.box_z.empty() ? prior : updateMovingProbability(prior, frame.box_z[i] != 0, bayes_));
+    // Judged against where the track began: a slow mover's steps add up.
+    const auto& last_mp = last.points[j];
+    if (last.anchored[j])
+      frame.anchor[i] = last.anchor[j];
+    else if (usableMatch(last_mp))
+      frame.anchor[i] = last_mp->p_world;
+    else
+      frame.anchor[i] = last.T_world_cam() * g.camera.backProject(lf.un[j], lf.depth[j]);
+    frame.anchored[i] = 1;
+    verdict[i] = movedAgainstPose(frame, g, i, frame.anchor[i]);
+    observeGeometry(frame, i, verdict[i] != 0);
+  }
+}
+
+void DynamicStage::observeMovingClusters(Frame& frame, const FrameGeometry& g,
+                                         const std::vector<int8_t>& verdict) const {
+  // Each keypoint a cluster covers is observed moving, once, unless its own residual already said so: its
+  // own "stayed" is the weaker word, most often from a track or a map point only a frame or two old.
+  const Features& f = *frame.features;
+  std::vector<uint8_t> moved(verdict.size());
+  for (std::size_t i = 0; i < verdict.size(); ++i) moved[i] = verdict[i] == 1;
+  const std::vector<MovingCluster> clusters = movingClusters(
+      f, g, moved, options_.cluster_link_px, options_.neighbour_depth_m, options_.cluster_min_moved);
+  if (clusters.empty()) return;
+  for (int i = 0; i < f.size(); ++i) {
+    if (moved[i] || f.depth[i] <= 0) continue;
+    for (const MovingCluster& c : clusters)
+      if (c.covers(f.un[i].x(), f.un[i].y(), f.depth[i], options_.neighbour_depth_m)) {
+        observeGeometry(frame, i, true);
+        break;
+      }
   }
 }
 

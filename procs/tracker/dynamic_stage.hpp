@@ -7,7 +7,9 @@
 //   2. applyPriors()  before each pose optimisation: each keypoint's prior is the posterior of the map point
 //                     it matched (else of matched neighbours at its depth, else 0.5), updated by z;
 //   3. conclude()     after the final pose: each matched point's residual against the camera motion is a
-//                     second observation (kGeometric), and the map points take the posteriors.
+//                     second observation (kGeometric), and the map points take the posteriors; so is each
+//                     unmatched keypoint's residual against its last-frame keypoint, tracked over a wide
+//                     window (keypoint_tracks.hpp), which also gives it that keypoint's posterior as prior.
 // A keypoint over the threshold keeps its match, so its probability travels on, but takes no part in the
 // pose, new map points or local BA.
 #include <vector>
@@ -30,7 +32,9 @@ class DynamicStage {
   // whose dynamic keypoints are the evidence that a medium box moves.
   void observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const;
   void applyPriors(Frame& frame, const FrameGeometry& g) const;
-  void conclude(Frame& frame, const FrameGeometry& g) const;
+  // last: the previous frame (or null); with kGeometric its keypoints are tracked to this frame's unmatched
+  // ones (keypoint_tracks.hpp), and each such track is judged as a matched point is.
+  void conclude(Frame& frame, const FrameGeometry& g, const Frame* last) const;
   // A keyframe's late boxes (they came after it was tracked): its map points take the observation.
   void observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const;
   // The boxes that count as moving for these keypoints, each cut to the mover by depth when configured:
@@ -50,8 +54,18 @@ class DynamicStage {
  private:
   std::vector<int8_t> boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
                                      const std::vector<float>& moving_share) const;
+  void observeGeometry(Frame& frame, int i, bool moved) const;
+  void observeTracks(Frame& frame, const FrameGeometry& g, const Frame& last,
+                     std::vector<int8_t>& verdict) const;
+  void observeMovingClusters(Frame& frame, const FrameGeometry& g, const std::vector<int8_t>& verdict) const;
+  // Whether keypoint i lies beyond the geometric limit from where p_world projects under the frame's pose.
+  bool movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,
+                        const Eigen::Vector3d& p_world) const;
   float neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const;
   float clampProbability(double p) const;
+  // A prior carried from an earlier frame: with kGeometric, what was static may have started to move
+  // since (and the reverse), with probability geo_transition; else unchanged, as in the paper.
+  double carried(double p) const;
 
   DynamicOptions options_;
   PoseOptimizerOptions pose_;

@@ -111,6 +111,8 @@ Frame::Frame(int64_t s, double t, std::shared_ptr<const Features> feat)
   outlier.assign(features->size(), 0);
   moving.assign(features->size(), 0.0f);
   dynamic.assign(features->size(), 0);
+  anchor.assign(features->size(), Eigen::Vector3d::Zero());
+  anchored.assign(features->size(), 0);
 }
 
 int Frame::numDynamic() const {

@@ -89,6 +89,11 @@ class Frame {
   std::vector<float> moving;
   std::vector<uint8_t> dynamic;
   bool isDynamic(std::size_t i) const { return dynamic[i] != 0; }
+  // A keypoint matched to no map point but tracked from the last frame's keypoints (keypoint_tracks.hpp):
+  // where its track began, in the world (valid where anchored[i]), so the geometric observation sees how
+  // far it has moved since, not only since the last frame.
+  std::vector<Eigen::Vector3d> anchor;
+  std::vector<uint8_t> anchored;
   int numDynamic() const;
 
   void setPose(const SE3& T_world_cam);

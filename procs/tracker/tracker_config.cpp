@@ -187,8 +187,14 @@ DynamicOptions dynamicOptions(const Config& c) {
   readFraction(c, "geo_lambda", o.geo_lambda);
   readFraction(c, "geo_omega", o.geo_omega);
   c.check(o.geo_lambda + o.geo_omega > 1.0, "geo_omega", "with geo_lambda must exceed 1");
+  readIn(c, "geo_transition", o.geo_transition, 0.0, 0.5);
   readAtLeast(c, "neighbour_radius_px", o.neighbour_radius_px, 0.0);
   readPositive(c, "neighbour_depth_m", o.neighbour_depth_m);
+  readAtLeast(c, "track_radius_px", o.track_radius_px, 0.0);
+  readIn(c, "track_max_distance", o.track_max_distance, 0, 256);
+  readIn(c, "track_ratio", o.track_ratio, 0.1, 1.0);
+  readAtLeast(c, "cluster_link_px", o.cluster_link_px, 0.0);
+  readAtLeast(c, "cluster_min_moved", o.cluster_min_moved, 0);
   readAtLeast(c, "mask_keypoint_radius_px", o.mask_keypoint_radius_px, 0);
   readAtLeast(c, "stale_box_max_age_s", o.stale_box_max_age_s, 0.0);
   readAtLeast(c, "stale_box_growth_px_per_s", o.stale_box_growth_px_per_s, 0.0);

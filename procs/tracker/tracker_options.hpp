@@ -133,12 +133,27 @@ struct DynamicOptions {
   // Geometric observation: a matched point whose residual under the estimated pose exceeds
   // geo_chi2_factor times the pose's chi-square threshold is observed moving (z = d), else static.
   double geo_chi2_factor = 8.0;
-  double geo_lambda = 0.7;  // P(large residual | dynamic)
-  double geo_omega = 0.95;  // P(small residual | static)
+  double geo_lambda = 0.9;   // P(large residual | dynamic)
+  double geo_omega = 0.999;  // P(small residual | static)
+  // Geometric: P(a point changes between moving and static from one frame to the next). A prior carried
+  // from history never sinks below it, so a box that starts moving after seconds at rest is not held
+  // static by its past.
+  double geo_transition = 0.05;
   // An unmatched keypoint takes its prior from matched neighbours this close (pixels, and metres in
   // depth), so the rest of a mover's keypoints are not each a fresh 0.5.
   double neighbour_radius_px = 24.0;
   double neighbour_depth_m = 0.3;
+  // Geometric: an unmatched keypoint is tracked to the last frame's keypoint with its descriptor (at most
+  // track_max_distance, ratio to the second best under track_ratio) within track_radius_px of where that one
+  // would be if static (0: off); a mover the detector does not know moves beyond the matcher's windows.
+  double track_radius_px = 40.0;
+  int track_max_distance = 50;
+  double track_ratio = 0.8;
+  // Geometric: keypoints that moved, linked within cluster_link_px and neighbour_depth_m, form a cluster;
+  // one of at least cluster_min_moved is a mover, and the keypoints in its box and depth range with no
+  // residual of their own are observed moving (0: off).
+  double cluster_link_px = 60.0;
+  int cluster_min_moved = 5;
   int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
   // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old,
   // each grown by stale_box_growth_px_per_s times their age (0: such frames are tracked on priors alone).

@@ -182,7 +182,8 @@ bool Tracker::trackLocalMap(Frame& frame) {
   matchLocalPoints(frame, local_points_, *geometry_, o, config_.matcher,
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
   optimizePose(frame);
-  dynamic_.conclude(frame, *geometry_);  // the geometric observation; map points take the posteriors
+  // The geometric observation; map points take the posteriors.
+  dynamic_.conclude(frame, *geometry_, last_frame_.features ? &last_frame_ : nullptr);
   int inliers = 0;
   for (std::size_t i = 0; i < frame.points.size(); ++i) {
     const auto& mp = frame.points[i];

@@ -128,8 +128,14 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.geo_chi2_factor", d.geo_chi2_factor);
   put("dynamic.geo_lambda", d.geo_lambda);
   put("dynamic.geo_omega", d.geo_omega);
+  put("dynamic.geo_transition", d.geo_transition);
   put("dynamic.neighbour_radius_px", d.neighbour_radius_px);
   put("dynamic.neighbour_depth_m", d.neighbour_depth_m);
+  put("dynamic.track_radius_px", d.track_radius_px);
+  put("dynamic.track_max_distance", d.track_max_distance);
+  put("dynamic.track_ratio", d.track_ratio);
+  put("dynamic.cluster_link_px", d.cluster_link_px);
+  put("dynamic.cluster_min_moved", d.cluster_min_moved);
   put("dynamic.mask_keypoint_radius_px", d.mask_keypoint_radius_px);
   put("dynamic.stale_box_max_age_s", d.stale_box_max_age_s);
   put("dynamic.stale_box_growth_px_per_s", d.stale_box_growth_px_per_s);

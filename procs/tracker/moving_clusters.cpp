@@ -1,0 +1,53 @@
+#include "tracker/moving_clusters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace bmp::tracker {
+
+std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry& g,
+                                          const std::vector<uint8_t>& moved, double link_px,
+                                          double link_depth_m, int min_size) {
+  // Union-find over the keypoints that moved; neighbours come from the frame's grid, so the cost stays
+  // near linear however many moved.
+  std::vector<int> parent(static_cast<std::size_t>(f.size()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&parent](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  const auto usable = [&](int i) { return moved[i] != 0 && f.depth[i] > 0; };
+  const double link2 = link_px * link_px;
+  for (int i = 0; i < f.size(); ++i) {
+    if (!usable(i)) continue;
+    for (int j : f.inArea(g, f.un[i].x(), f.un[i].y(), link_px)) {
+      if (j <= i || !usable(j) || (f.un[i] - f.un[j]).squaredNorm() > link2 ||
+          std::abs(f.depth[i] - f.depth[j]) > link_depth_m)
+        continue;
+      parent[root(j)] = root(i);
+    }
+  }
+  std::vector<int> slot(static_cast<std::size_t>(f.size()), -1);
+  std::vector<MovingCluster> all;
+  for (int i = 0; i < f.size(); ++i) {
+    if (!usable(i)) continue;
+    int& s = slot[root(i)];
+    const double u = f.un[i].x(), v = f.un[i].y(), d = f.depth[i];
+    if (s < 0) {
+      s = static_cast<int>(all.size());
+      all.push_back({0, u, v, u, v, d, d});
+    }
+    MovingCluster& c = all[s];
+    ++c.size;
+    c.u0 = std::min(c.u0, u), c.u1 = std::max(c.u1, u);
+    c.v0 = std::min(c.v0, v), c.v1 = std::max(c.v1, v);
+    c.near_m = std::min(c.near_m, d), c.far_m = std::max(c.far_m, d);
+  }
+  all.erase(std::remove_if(all.begin(), all.end(),
+                           [min_size](const MovingCluster& c) { return c.size < min_size; }),
+            all.end());
+  return all;
+}
+
+}  // namespace bmp::tracker

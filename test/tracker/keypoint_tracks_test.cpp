@@ -1,0 +1,139 @@
+// Keypoint tracks and the geometric observation on a mover no detector knows: a real photo's patch (the
+// "box", 2.4 m away) slides 15 px a frame over a real TUM frame (the room, 4 m away), the camera at rest.
+// 15 px is beyond the motion model's window, so no map point would follow the box.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "shared_data.hpp"
+#include "tracker/dynamic_stage.hpp"
+#include "tracker/keypoint_tracks.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+constexpr double kBoxDepth = 2.4, kRoomDepth = 4.0;
+constexpr int kStep = 15;  // px the box moves per frame
+
+struct SlidingBox {
+  cv::Mat room, box;
+  explicit SlidingBox() {
+    room = cv::imread(test::sharedPath("images/tum_fr3_sitting_xyz_1341845839.214000.png"),
+                      cv::IMREAD_GRAYSCALE);
+    const cv::Mat photo = cv::imread(test::sharedPath("images/bus.jpg"), cv::IMREAD_GRAYSCALE);
+    if (room.empty() || photo.empty()) return;
+    cv::resize(room, room, cv::Size(640, 480));
+    cv::resize(photo(cv::Rect(0, 0, photo.cols, photo.cols)), box, cv::Size(180, 180));
+  }
+  cv::Rect where(int frame) const { return {200 + kStep * frame, 150, box.cols, box.rows}; }
+  void render(int frame, cv::Mat& gray, cv::Mat& depth) const {
+    gray = room.clone();
+    depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(kRoomDepth));
+    box.copyTo(gray(where(frame)));
+    depth(where(frame)).setTo(kBoxDepth);
+  }
+};
+
+struct Rig {
+  CameraIntrinsics k;  // 525, 319.5, 239.5, no distortion
+  TrackerConfig config;
+  FrameGeometry g{k, config};
+  OrbExtractor extractor{config.orb};
+  Frame frame(const SlidingBox& s, int i) const {
+    cv::Mat gray, depth;
+    s.render(i, gray, depth);
+    Frame f(i, i / 30.0, buildFeatures(extractor.extract(gray), depth, g, nullptr, cv::Mat()));
+    f.setPose(SE3::Identity());
+    return f;
+  }
+};
+
+bool inside(const cv::Rect& r, const cv::Point2f& p, int inset) {
+  return p.x >= r.x + inset && p.y >= r.y + inset && p.x < r.x + r.width - inset &&
+         p.y < r.y + r.height - inset;
+}
+
+TEST(KeypointTracks, FollowTheBoxBeyondTheMotionWindowAndTheRoomInPlace) {
+  const SlidingBox scene;
+  ASSERT_FALSE(scene.box.empty()) << "images missing under " << test::sharedDir();
+  const Rig s;
+  const Frame last = s.frame(scene, 0), now = s.frame(scene, 1);
+  const std::vector<uint8_t> open(static_cast<std::size_t>(now.features->size()), 1);
+  const std::vector<int> track = trackFromLastFrame(now, last, s.g, open, KeypointTrackOptions{});
+  int on_box = 0, box_tracked = 0, room_tracked = 0, wrong = 0;
+  for (int i = 0; i < now.features->size(); ++i) {
+    const cv::KeyPoint& kp = now.features->keys[i];
+    const bool box = inside(scene.where(1), kp.pt, 8), room = !inside(scene.where(1), kp.pt, -12);
+    if (!box && !room) continue;  // the box's rim: its keypoints see both
+    on_box += box;
+    const int j = track[i];
+    if (j < 0) continue;
+    // Where the keypoint was a frame ago: kStep to the left on the box, in place in the room (to within
+    // two pixels of its pyramid level).
+    const cv::Point2f expected = box ? kp.pt - cv::Point2f(kStep, 0) : kp.pt;
+    const cv::Point2f d = last.features->keys[j].pt - expected;
+    const double tolerance = 2.0 * s.g.pyramid.scale[kp.octave];
+    wrong += d.dot(d) > tolerance * tolerance;
+    box_tracked += box;
+    room_tracked += room;
+  }
+  ASSERT_GT(on_box, 40);
+  EXPECT_GT(box_tracked, on_box / 2) << "of " << on_box << " on the box";
+  EXPECT_GT(room_tracked, 200);
+  EXPECT_LT(wrong, (box_tracked + room_tracked) / 50) << "tracks to the wrong keypoint";
+}
+
+// Share of keypoints kept out on the box and in the room, frame by frame, with no box from the detector.
+struct KeptOut {
+  double box = 0.0, room = 0.0;
+};
+std::vector<KeptOut> run(const DynamicOptions& options, int frames) {
+  const SlidingBox scene;
+  const Rig s;
+  const DynamicStage stage(options, s.config.pose);
+  const std::vector<ObjectBox> none;  // the detector answered and saw nothing it knows
+  std::vector<KeptOut> out;
+  Frame last;
+  for (int i = 0; i < frames; ++i) {
+    Frame f = s.frame(scene, i);
+    const Frame* previous = last.features ? &last : nullptr;
+    stage.observe(f, &none, previous);
+    stage.applyPriors(f, s.g);
+    stage.conclude(f, s.g, previous);
+    int box = 0, box_out = 0, room = 0, room_out = 0;
+    for (int k = 0; k < f.features->size(); ++k) {
+      const cv::Point2f p = f.features->keys[k].pt;
+      if (inside(scene.where(i), p, 6)) {
+        ++box;
+        box_out += f.isDynamic(k);
+      } else if (!inside(scene.where(i), p, -12)) {
+        ++room;
+        room_out += f.isDynamic(k);
+      }
+    }
+    out.push_back({static_cast<double>(box_out) / box, static_cast<double>(room_out) / room});
+    last = f;
+  }
+  return out;
+}
+
+// Tracked, judged against where each track began, and spread to the keypoints of the same body: most of
+// the box is kept out from the second frame of motion on, and almost none of the room.
+TEST(GeometricObservation, KeepsAMoverNoDetectorKnowsOutWithinTwoFrames) {
+  ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
+  DynamicOptions geometric;
+  geometric.mode = DynamicMode::kGeometric;
+  const std::vector<KeptOut> r = run(geometric, 6);
+  for (int i = 2; i < 6; ++i) {
+    EXPECT_GE(r[i].box, 0.8) << "frame " << i;
+    EXPECT_LE(r[i].room, 0.02) << "frame " << i;
+  }
+  // Without tracks nothing on the box is matched (no map here), so nothing is judged: all stay in.
+  DynamicOptions untracked = geometric;
+  untracked.track_radius_px = 0.0;
+  for (const KeptOut& k : run(untracked, 6)) EXPECT_LT(k.box, 0.05);
+}
+
+}  // namespace
+}  // namespace bmp::tracker
