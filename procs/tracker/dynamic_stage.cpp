@@ -216,13 +216,11 @@ void DynamicStage::observeMovingClusters(Frame& frame, const FrameGeometry& g,
   // Each keypoint a cluster covers is observed moving, once, unless its own residual already said so: its
   // own "stayed" is the weaker word, most often from a track or a map point only a frame or two old.
   const Features& f = *frame.features;
-  std::vector<uint8_t> moved(verdict.size());
-  for (std::size_t i = 0; i < verdict.size(); ++i) moved[i] = verdict[i] == 1;
   const std::vector<MovingCluster> clusters = movingClusters(
-      f, g, moved, options_.cluster_link_px, options_.neighbour_depth_m, options_.cluster_min_moved);
+      f, g, verdict, options_.cluster_link_px, options_.neighbour_depth_m, options_.cluster_min_moved);
   if (clusters.empty()) return;
   for (int i = 0; i < f.size(); ++i) {
-    if (moved[i] || f.depth[i] <= 0) continue;
+    if (verdict[i] == 1 || f.depth[i] <= 0) continue;
     for (const MovingCluster& c : clusters)
       if (c.covers(f.un[i].x(), f.un[i].y(), f.depth[i], options_.neighbour_depth_m)) {
         observeGeometry(frame, i, true);

@@ -7,7 +7,7 @@
 namespace bmp::tracker {
 
 std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry& g,
-                                          const std::vector<uint8_t>& moved, double link_px,
+                                          const std::vector<int8_t>& verdict, double link_px,
                                           double link_depth_m, int min_size) {
   // Union-find over the keypoints that moved; neighbours come from the frame's grid, so the cost stays
   // near linear however many moved.
@@ -17,7 +17,7 @@ std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry
     while (parent[a] != a) a = parent[a] = parent[parent[a]];
     return a;
   };
-  const auto usable = [&](int i) { return moved[i] != 0 && f.depth[i] > 0; };
+  const auto usable = [&](int i) { return verdict[i] == 1 && f.depth[i] > 0; };
   const double link2 = link_px * link_px;
   for (int i = 0; i < f.size(); ++i) {
     if (!usable(i)) continue;
@@ -44,9 +44,14 @@ std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry
     c.v0 = std::min(c.v0, v), c.v1 = std::max(c.v1, v);
     c.near_m = std::min(c.near_m, d), c.far_m = std::max(c.far_m, d);
   }
-  all.erase(std::remove_if(all.begin(), all.end(),
-                           [min_size](const MovingCluster& c) { return c.size < min_size; }),
-            all.end());
+  const auto rejected = [&](const MovingCluster& c) {
+    if (c.size < min_size) return true;
+    int stayed = 0;
+    for (int i = 0; i < f.size(); ++i)
+      stayed += verdict[i] == 0 && f.depth[i] > 0 && c.covers(f.un[i].x(), f.un[i].y(), f.depth[i], 0.0);
+    return stayed > c.size;
+  };
+  all.erase(std::remove_if(all.begin(), all.end(), rejected), all.end());
   return all;
 }
 

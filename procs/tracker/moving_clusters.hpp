@@ -20,10 +20,13 @@ struct MovingCluster {
   }
 };
 
-// moved: per keypoint, whether its residual said it moved. Keypoints with depth that moved are linked
-// within link_px in the image and link_depth_m in depth; clusters of at least min_size are returned.
+// verdict: per keypoint, what its residual said: 1 moved, 0 stayed, -1 nothing. Keypoints with depth that
+// moved are linked within link_px in the image and link_depth_m in depth. Returned: the clusters of at
+// least min_size whose box and depth range hold no more keypoints that stayed than moved (a mover's region
+// is mostly mover; a few mismatches strung across a static wall are not, and must not take it out of the
+// pose).
 std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry& g,
-                                          const std::vector<uint8_t>& moved, double link_px,
+                                          const std::vector<int8_t>& verdict, double link_px,
                                           double link_depth_m, int min_size);
 
 }  // namespace bmp::tracker
