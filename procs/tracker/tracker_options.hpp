@@ -150,8 +150,8 @@ struct DynamicOptions {
   int track_max_distance = 50;
   double track_ratio = 0.8;
   // Geometric: keypoints that moved, linked within cluster_link_px and neighbour_depth_m, form a cluster;
-  // one of at least cluster_min_moved is a mover, and the keypoints in its box and depth range with no
-  // residual of their own are observed moving (0: off).
+  // one of at least cluster_min_moved that outnumbers the keypoints that stayed in its box and depth range
+  // is a mover, and every other keypoint there is observed moving too (0: off).
   double cluster_link_px = 60.0;
   int cluster_min_moved = 5;
   int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
