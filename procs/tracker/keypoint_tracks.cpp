@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "tracker/matcher.hpp"
+
 namespace bmp::tracker {
 
 std::vector<int> trackFromLastFrame(const Frame& frame, const Frame& last, const FrameGeometry& g,
@@ -18,22 +20,15 @@ std::vector<int> trackFromLastFrame(const Frame& frame, const Frame& last, const
     const Eigen::Vector2d q = g.project(p);
     if (!g.inBounds(q.x(), q.y())) continue;
     const int level = prev.level(j);
-    int best = std::numeric_limits<int>::max(), second = best, best_i = -1;
-    for (int i : cur.inArea(g, q.x(), q.y(), options.radius_px, std::max(0, level - 1), level + 1)) {
-      const int d = hamming(prev.descriptor(j), cur.descriptor(i));
-      if (d < best) {
-        second = best;
-        best = d;
-        best_i = i;
-      } else if (d < second) {
-        second = d;
-      }
-    }
+    ClosestTwo c;
+    for (int i : cur.inArea(g, q.x(), q.y(), options.radius_px, std::max(0, level - 1), level + 1))
+      c.offer(i, hamming(prev.descriptor(j), cur.descriptor(i)));
     // The best must be clearly the best: a wide window holds many look-alikes.
-    if (best_i < 0 || best > options.max_distance || best >= options.ratio * second) continue;
-    if (!open[best_i] || best >= best_distance[best_i]) continue;
-    best_distance[best_i] = best;
-    track[best_i] = j;
+    if (c.best < 0 || c.best_dist > options.max_distance || c.best_dist >= options.ratio * c.second_dist)
+      continue;
+    if (!open[c.best] || c.best_dist >= best_distance[c.best]) continue;
+    best_distance[c.best] = c.best_dist;
+    track[c.best] = j;
   }
   return track;
 }

@@ -197,23 +197,14 @@ int matchByDescriptors(const Features& f, const std::vector<std::shared_ptr<MapP
   std::vector<std::shared_ptr<MapPoint>> chosen(f.size());
   for (const auto& mp : points) {
     if (!mp || mp->bad) continue;
-    int best = -1, best_dist = 256, second_dist = 256;
+    ClosestTwo c;
     const uint8_t* d_mp = mp->descriptor.ptr<uint8_t>(0);
-    for (int j = 0; j < f.size(); ++j) {
-      if (f.excluded[j]) continue;
-      const int d = hamming(d_mp, f.descriptor(j));
-      if (d < best_dist) {
-        second_dist = best_dist;
-        best_dist = d;
-        best = j;
-      } else if (d < second_dist) {
-        second_dist = d;
-      }
-    }
-    if (best < 0 || best_dist > max_distance || best_dist > ratio * second_dist) continue;
-    if (best_dist < best_for_key[best]) {
-      best_for_key[best] = best_dist;
-      chosen[best] = mp;
+    for (int j = 0; j < f.size(); ++j)
+      if (!f.excluded[j]) c.offer(j, hamming(d_mp, f.descriptor(j)));
+    if (c.best < 0 || c.best_dist > max_distance || c.best_dist > ratio * c.second_dist) continue;
+    if (c.best_dist < best_for_key[c.best]) {
+      best_for_key[c.best] = c.best_dist;
+      chosen[c.best] = mp;
     }
   }
   int n = 0;
@@ -282,25 +273,19 @@ std::vector<std::pair<int, int>> matchForTriangulation(const KeyFrame& kf1, cons
     const Eigen::Vector3d line = E * x1;  // in kf2's normalised image
     const double line_norm = std::hypot(line.x(), line.y());
     if (line_norm < 1e-12) continue;
-    int best = -1, best_dist = 256, second_dist = 256;
+    ClosestTwo c;
     for (int j : cand2) {
       const int d = hamming(f1.descriptor(i), f2.descriptor(j));
-      if (d >= second_dist) continue;
+      if (d >= c.second_dist) continue;  // cannot count: skip the epipolar test
       const Eigen::Vector3d x2((f2.un[j].x() - g.cx) / g.fx, (f2.un[j].y() - g.cy) / g.fy, 1.0);
       const double dist_px = std::abs(line.dot(x2)) / line_norm * g.fx;
       if (dist_px * dist_px > epipolar_chi2 * g.pyramid.sigma2[f2.level(j)]) continue;
-      if (d < best_dist) {
-        second_dist = best_dist;
-        best_dist = d;
-        best = j;
-      } else {
-        second_dist = d;
-      }
+      c.offer(j, d);
     }
-    if (best < 0 || best_dist > max_distance || best_dist > ratio * second_dist) continue;
-    if (best_dist < taken_dist[best]) {
-      taken_dist[best] = best_dist;
-      taken[best] = i;
+    if (c.best < 0 || c.best_dist > max_distance || c.best_dist > ratio * c.second_dist) continue;
+    if (c.best_dist < taken_dist[c.best]) {
+      taken_dist[c.best] = c.best_dist;
+      taken[c.best] = i;
     }
   }
   for (int j = 0; j < f2.size(); ++j)

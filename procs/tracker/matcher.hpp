@@ -12,6 +12,22 @@
 
 namespace bmp::tracker {
 
+// The closest and second-closest descriptor among candidates offered one at a time: what every
+// ratio-tested search below keeps. Distances are Hamming, at most 256.
+struct ClosestTwo {
+  int best = -1;  // the closest candidate's index, -1 while none was offered
+  int best_dist = 256, second_dist = 256;
+  void offer(int index, int d) {
+    if (d < best_dist) {
+      second_dist = best_dist;
+      best_dist = d;
+      best = index;
+    } else if (d < second_dist) {
+      second_dist = d;
+    }
+  }
+};
+
 // Projects the last frame's matched points into `current` (whose pose is the prediction) and matches them
 // within radius * scale(level) pixels. Returns the number of new matches.
 int matchFromLastFrame(Frame& current, const Frame& last, const FrameGeometry& g, const TrackingOptions& o,
