@@ -123,26 +123,30 @@ float DynamicStage::neighbourPrior(const Frame& frame, const FrameGeometry& g, i
     return static_cast<float>(options_.unmatched_prior);
   double sum = 0.0;
   int n = 0;
-  for (int j : f.inArea(g, f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px)) {
+  f.forEachInArea(g, f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px, [&](int j) {
     const auto& mp = frame.points[j];
-    if (j == i || !usableMatch(mp) || f.depth[j] <= 0) continue;
-    if (std::abs(f.depth[j] - f.depth[i]) > options_.neighbour_depth_m) continue;
+    if (j == i || !usableMatch(mp) || f.depth[j] <= 0) return;
+    if (std::abs(f.depth[j] - f.depth[i]) > options_.neighbour_depth_m) return;
     sum += mp->moving_probability;
     ++n;
-  }
+  });
   return n > 0 ? static_cast<float>(sum / n) : static_cast<float>(options_.unmatched_prior);
 }
 
-void DynamicStage::applyPriors(Frame& frame, const FrameGeometry& g) const {
+void DynamicStage::applyPriors(Frame& frame) const {
   if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
   for (int i = 0; i < frame.features->size(); ++i) {
     const auto& mp = frame.points[i];
-    const double prior = carried(usableMatch(mp) ? mp->moving_probability : neighbourPrior(frame, g, i));
-    const double p =
-        frame.box_z.empty() ? prior : updateMovingProbability(prior, frame.box_z[i] != 0, bayes_);
-    frame.moving[i] = clampProbability(p);
-    frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
+    // An unmatched keypoint takes no part in the pose: its neighbours' prior waits for conclude().
+    observeBoxes(frame, i, usableMatch(mp) ? mp->moving_probability : options_.unmatched_prior);
   }
+}
+
+void DynamicStage::observeBoxes(Frame& frame, int i, double posterior_before) const {
+  const double prior = carried(posterior_before);
+  const double p = frame.box_z.empty() ? prior : updateMovingProbability(prior, frame.box_z[i] != 0, bayes_);
+  frame.moving[i] = clampProbability(p);
+  frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
 }
 
 bool DynamicStage::movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,
@@ -162,7 +166,10 @@ void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* l
     std::vector<int8_t> verdict(static_cast<std::size_t>(f.size()), -1);
     for (int i = 0; i < f.size(); ++i) {
       const auto& mp = frame.points[i];
-      if (!usableMatch(mp)) continue;
+      if (!usableMatch(mp)) {
+        observeBoxes(frame, i, neighbourPrior(frame, g, i));
+        continue;
+      }
       // The residual against the camera motion estimated without the dynamic keypoints.
       verdict[i] = movedAgainstPose(frame, g, i, mp->p_world);
       observeGeometry(frame, i, verdict[i] != 0);

@@ -5,11 +5,12 @@
 //                     (the paper's region test; with DynamicMode::kDepth and up, a person's box is cut to
 //                     the person by depth; a chair or cup box counts only when held or seen moving);
 //   2. applyPriors()  before each pose optimisation: each keypoint's prior is the posterior of the map point
-//                     it matched (else of matched neighbours at its depth, else 0.5), updated by z;
-//   3. conclude()     after the final pose: each matched point's residual against the camera motion is a
-//                     second observation (kGeometric), and the map points take the posteriors; so is each
-//                     unmatched keypoint's residual against its last-frame keypoint, tracked over a wide
-//                     window (keypoint_tracks.hpp), which also gives it that keypoint's posterior as prior.
+//                     it matched (else 0.5), updated by z;
+//   3. conclude()     after the final pose, with kGeometric: an unmatched keypoint's prior becomes that of
+//                     matched neighbours at its depth; each matched point's residual against the camera
+//                     motion is a second observation; so is each unmatched keypoint's residual against its
+//                     last-frame keypoint, tracked over a wide window (keypoint_tracks.hpp), which also
+//                     gives it that keypoint's posterior as prior. The map points take the posteriors.
 // A keypoint over the threshold keeps its match, so its probability travels on, but takes no part in the
 // pose, new map points or local BA.
 #include <vector>
@@ -31,7 +32,7 @@ class DynamicStage {
   // boxes: the detector's for this frame, or null when none came. last: the previous frame (or null),
   // whose dynamic keypoints are the evidence that a medium box moves.
   void observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const;
-  void applyPriors(Frame& frame, const FrameGeometry& g) const;
+  void applyPriors(Frame& frame) const;
   // last: the previous frame (or null); with kGeometric its keypoints are tracked to this frame's unmatched
   // ones (keypoint_tracks.hpp), and each such track is judged as a matched point is.
   void conclude(Frame& frame, const FrameGeometry& g, const Frame* last) const;
@@ -54,6 +55,8 @@ class DynamicStage {
  private:
   std::vector<int8_t> boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
                                      const std::vector<float>& moving_share) const;
+  // Keypoint i's prior (posterior_before, carried) updated by this frame's box observation, if any.
+  void observeBoxes(Frame& frame, int i, double posterior_before) const;
   void observeGeometry(Frame& frame, int i, bool moved) const;
   void observeTracks(Frame& frame, const FrameGeometry& g, const Frame& last,
                      std::vector<int8_t>& verdict) const;

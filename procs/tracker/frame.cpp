@@ -30,30 +30,6 @@ FrameGeometry::FrameGeometry(const CameraIntrinsics& k, const TrackerConfig& con
   grid_cell_h = (max_y - min_y) / kGridRows;
 }
 
-std::vector<int> Features::inArea(const FrameGeometry& g, double u, double v, double r, int min_level,
-                                  int max_level) const {
-  std::vector<int> out;
-  const int c0 = std::max(0, static_cast<int>(std::floor((u - r - g.min_x) / g.grid_cell_w)));
-  const int c1 =
-      std::min(FrameGeometry::kGridCols - 1, static_cast<int>(std::ceil((u + r - g.min_x) / g.grid_cell_w)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((v - r - g.min_y) / g.grid_cell_h)));
-  const int r1 =
-      std::min(FrameGeometry::kGridRows - 1, static_cast<int>(std::ceil((v + r - g.min_y) / g.grid_cell_h)));
-  if (c0 > c1 || r0 > r1) return out;
-  for (int row = r0; row <= r1; ++row) {
-    for (int col = c0; col <= c1; ++col) {
-      for (int i : grid[row * FrameGeometry::kGridCols + col]) {
-        const int level = keys[i].octave;
-        if (min_level >= 0 && level < min_level) continue;
-        if (max_level >= 0 && level > max_level) continue;
-        const double du = un[i].x() - u, dv = un[i].y() - v;
-        if (std::abs(du) < r && std::abs(dv) < r) out.push_back(i);
-      }
-    }
-  }
-  return out;
-}
-
 int Features::numExcluded() const {
   return static_cast<int>(std::count(excluded.begin(), excluded.end(), 1));
 }

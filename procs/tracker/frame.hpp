@@ -1,9 +1,12 @@
 #pragma once
 // A frame's features (immutable once built, shared with the keyframe made from it) and the frame itself:
 // its pose and its matches to map points.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -58,13 +61,41 @@ struct Features {
   double uRight(const FrameGeometry& g, int i) const {
     return depth[i] > 0 ? un[i].x() - g.bf / depth[i] : -1.0;
   }
-  // Usable keypoints within radius r of (u, v) on levels [min_level, max_level] (-1: any).
-  std::vector<int> inArea(const FrameGeometry& g, double u, double v, double r, int min_level = -1,
-                          int max_level = -1) const;
+  // Calls fn(i) for each keypoint within radius r of (u, v) on levels [min_level, max_level] (-1: any), in
+  // grid order. Walks the grid in place: it runs for every projected point, so no list is built.
+  template <class Fn>
+  void forEachInArea(const FrameGeometry& g, double u, double v, double r, int min_level, int max_level,
+                     Fn&& fn) const;
+  template <class Fn>
+  void forEachInArea(const FrameGeometry& g, double u, double v, double r, Fn&& fn) const {
+    forEachInArea(g, u, v, r, -1, -1, std::forward<Fn>(fn));
+  }
   int numExcluded() const;
   // Keypoints with depth that are not excluded, nearest first: the order new points are made from depth.
   std::vector<int> nearestWithDepth() const;
 };
+
+template <class Fn>
+void Features::forEachInArea(const FrameGeometry& g, double u, double v, double r, int min_level,
+                             int max_level, Fn&& fn) const {
+  const int c0 = std::max(0, static_cast<int>(std::floor((u - r - g.min_x) / g.grid_cell_w)));
+  const int c1 =
+      std::min(FrameGeometry::kGridCols - 1, static_cast<int>(std::ceil((u + r - g.min_x) / g.grid_cell_w)));
+  const int r0 = std::max(0, static_cast<int>(std::floor((v - r - g.min_y) / g.grid_cell_h)));
+  const int r1 =
+      std::min(FrameGeometry::kGridRows - 1, static_cast<int>(std::ceil((v + r - g.min_y) / g.grid_cell_h)));
+  for (int row = r0; row <= r1; ++row) {
+    for (int col = c0; col <= c1; ++col) {
+      for (int i : grid[row * FrameGeometry::kGridCols + col]) {
+        const int level = keys[i].octave;
+        if (min_level >= 0 && level < min_level) continue;
+        if (max_level >= 0 && level > max_level) continue;
+        const double du = un[i].x() - u, dv = un[i].y() - v;
+        if (std::abs(du) < r && std::abs(dv) < r) fn(i);
+      }
+    }
+  }
+}
 
 // Builds the per-keypoint data from ORB output. depth: CV_16UC1 (raw units, scaled by the camera's
 // depth_scale) or CV_32FC1 metres, registered to the colour image; may be empty.

@@ -73,7 +73,7 @@ enum class Gate { kTracking, kReprojection };
 
 struct SearchWindow {
   double radius = 0.0;                 // pixels
-  int min_level = -1, max_level = -1;  // as Features::inArea
+  int min_level = -1, max_level = -1;  // as Features::forEachInArea
   Gate gate = Gate::kTracking;
   const std::vector<std::shared_ptr<MapPoint>>* occupied = nullptr;  // kTracking: the view's matches
   double chi2 = 0.0;                                                 // kReprojection
@@ -102,8 +102,8 @@ bool passesGate(const Features& f, const FrameGeometry& g, const Projection& p, 
 SearchResult searchByProjection(const Features& f, const FrameGeometry& g, const Projection& p,
                                 const uint8_t* descriptor, const SearchWindow& w) {
   SearchResult s;
-  for (int j : f.inArea(g, p.uv.x(), p.uv.y(), w.radius, w.min_level, w.max_level)) {
-    if (!passesGate(f, g, p, w, j)) continue;
+  f.forEachInArea(g, p.uv.x(), p.uv.y(), w.radius, w.min_level, w.max_level, [&](int j) {
+    if (!passesGate(f, g, p, w, j)) return;
     const int d = hamming(descriptor, f.descriptor(j));
     if (d < s.best_dist) {
       s.second_dist = s.best_dist;
@@ -115,7 +115,7 @@ SearchResult searchByProjection(const Features& f, const FrameGeometry& g, const
       s.second_dist = d;
       s.second_level = f.level(j);
     }
-  }
+  });
   return s;
 }
 

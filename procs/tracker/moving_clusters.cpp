@@ -21,12 +21,12 @@ std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry
   const double link2 = link_px * link_px;
   for (int i = 0; i < f.size(); ++i) {
     if (!usable(i)) continue;
-    for (int j : f.inArea(g, f.un[i].x(), f.un[i].y(), link_px)) {
+    f.forEachInArea(g, f.un[i].x(), f.un[i].y(), link_px, [&](int j) {
       if (j <= i || !usable(j) || (f.un[i] - f.un[j]).squaredNorm() > link2 ||
           std::abs(f.depth[i] - f.depth[j]) > link_depth_m)
-        continue;
+        return;
       parent[root(j)] = root(i);
-    }
+    });
   }
   std::vector<int> slot(static_cast<std::size_t>(f.size()), -1);
   std::vector<MovingCluster> all;

@@ -42,8 +42,12 @@ TrackResult Tracker::track(const TrackerInput& input) {
   Stopwatch watch;
   TrackResult result;
   Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
-  dynamic_.observe(frame, input.boxes ? &*input.boxes : nullptr,
-                   last_frame_.features ? &last_frame_ : nullptr);
+  dynamic_ms_ = 0.0;
+  {
+    const ScopedAccumulator timer(dynamic_ms_);
+    dynamic_.observe(frame, input.boxes ? &*input.boxes : nullptr,
+                     last_frame_.features ? &last_frame_ : nullptr);
+  }
   {
     Stopwatch wait;
     const auto lock = map_.lockForTracking();
@@ -87,10 +91,13 @@ TrackResult Tracker::track(const TrackerInput& input) {
     result.keypoint_in_region.assign(frame.box_z.begin(), frame.box_z.end());
     result.keypoints.reserve(frame.features->keys.size());
     for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
-    if (result.new_keyframe)
+    if (result.new_keyframe) {
+      const ScopedAccumulator timer(dynamic_ms_);
       result.dynamic_mask =
           dynamic_.mask(*frame.features, frame.dynamic, input.boxes ? &*input.boxes : nullptr, input.depth,
                         geometry_->camera.intrinsics().depth_scale);
+    }
+    result.dynamic_ms = dynamic_ms_;
   }
   if (!config_.mapping.threaded) mapper_->processQueued();
   result.processing_ms = watch.elapsedMs();
@@ -120,7 +127,10 @@ bool Tracker::initialise(Frame& frame, TrackResult& result) {
   for (int i = 0; i < f.size(); ++i) with_depth += f.hasDepth(i) && !f.excluded[i];
   if (with_depth < config_.tracking.init_min_keypoints) return false;
   frame.setPose(SE3::Identity());
-  dynamic_.applyPriors(frame, *geometry_);  // nothing matched yet: the boxes alone decide
+  {
+    const ScopedAccumulator timer(dynamic_ms_);
+    dynamic_.applyPriors(frame);  // nothing matched yet: the boxes alone decide
+  }
   auto kf = std::make_shared<KeyFrame>(map_.newKeyFrameId(), frame);
   map_.addKeyFrame(kf);
   for (int i = 0; i < f.size(); ++i) {

@@ -58,6 +58,7 @@ struct TrackResult {
   std::vector<uint8_t> keypoint_in_region;
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
+  double dynamic_ms = 0.0;     // the dynamic stage: observations, priors, geometric test, keyframe mask
   double processing_ms = 0.0;  // the whole call
   bool ok() const { return state == TrackingState::kOk || state == TrackingState::kRelocalised; }
 };
@@ -136,6 +137,7 @@ class Tracker {
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   int64_t last_keyframe_seq_ = 0;
   int64_t last_reloc_seq_ = -1000000;
+  double dynamic_ms_ = 0.0;  // the current frame's time in the dynamic stage, spread over several steps
   std::deque<FrameRecord> records_;  // a deque: no copy of the whole run's records when it grows
 };
 

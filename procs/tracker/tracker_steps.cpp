@@ -3,6 +3,7 @@
 #include <map>
 #include <unordered_set>
 
+#include "bmp/common/timing.hpp"
 #include "tracker/frame_pose.hpp"
 #include "tracker/matcher.hpp"
 #include "tracker/relocalizer.hpp"
@@ -34,7 +35,10 @@ void Tracker::prepareLastFrame() {
 }
 
 void Tracker::optimizePose(Frame& frame) {
-  dynamic_.applyPriors(frame, *geometry_);
+  {
+    const ScopedAccumulator timer(dynamic_ms_);
+    dynamic_.applyPriors(frame);
+  }
   optimizeFramePose(frame, *geometry_, config_.pose);
 }
 
@@ -183,7 +187,10 @@ bool Tracker::trackLocalMap(Frame& frame) {
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
   optimizePose(frame);
   // The geometric observation; map points take the posteriors.
-  dynamic_.conclude(frame, *geometry_, last_frame_.features ? &last_frame_ : nullptr);
+  {
+    const ScopedAccumulator timer(dynamic_ms_);
+    dynamic_.conclude(frame, *geometry_, last_frame_.features ? &last_frame_ : nullptr);
+  }
   int inliers = 0;
   for (std::size_t i = 0; i < frame.points.size(); ++i) {
     const auto& mp = frame.points[i];

@@ -99,7 +99,7 @@ std::vector<KeptOut> run(const DynamicOptions& options, int frames) {
     Frame f = s.frame(scene, i);
     const Frame* previous = last.features ? &last : nullptr;
     stage.observe(f, &none, previous);
-    stage.applyPriors(f, s.g);
+    stage.applyPriors(f);
     stage.conclude(f, s.g, previous);
     int box = 0, box_out = 0, room = 0, room_out = 0;
     for (int k = 0; k < f.features->size(); ++k) {

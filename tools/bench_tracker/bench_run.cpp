@@ -66,7 +66,7 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
 
 // Per-frame figures kept while tracking (the frames' results are not kept: long runs measure memory).
 struct FrameTimes {
-  bmp::TimingStats extract, wait;
+  bmp::TimingStats extract, wait, dynamic;
 };
 
 // --score-masks: the dynamic stage against DIR/mask/ from this many seconds into the sequence on (the
@@ -100,6 +100,8 @@ void printRunSummary(const OfflineResult& result, const FrameTimes& times) {
   std::printf("map lock wait ms median %.2f, p95 %.2f (part of track)\n", times.wait.median(),
               times.wait.p95());
   std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", times.extract.median());
+  std::printf("dynamic ms median %.2f, p95 %.2f (the dynamic stage, part of track)\n", times.dynamic.median(),
+              times.dynamic.p95());
 }
 
 // Each associated frame's position error after the global alignment: where the trajectory went wrong.
@@ -222,6 +224,7 @@ int runBenchTracker(const bmp::ArgParser& args) {
                                                                                const OfflineFrame& f) {
     times->extract.add(r.extract_ms);
     times->wait.add(r.lock_wait_ms);
+    times->dynamic.add(r.dynamic_ms);
     if (score) {
       if (!scored->first_stamp) scored->first_stamp = f.stamp;
       if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);

@@ -51,6 +51,20 @@ class ScopedTimer {
   Stopwatch watch_;
 };
 
+// Adds the time between construction and destruction to a running total in milliseconds: for a stage whose
+// work is spread over several calls within one frame.
+class ScopedAccumulator {
+ public:
+  explicit ScopedAccumulator(double& total_ms) : total_ms_(total_ms) {}
+  ~ScopedAccumulator() { total_ms_ += watch_.elapsedMs(); }
+  ScopedAccumulator(const ScopedAccumulator&) = delete;
+  ScopedAccumulator& operator=(const ScopedAccumulator&) = delete;
+
+ private:
+  double& total_ms_;
+  Stopwatch watch_;
+};
+
 // Median and p95 of a vector of samples without building a TimingStats.
 double percentileOf(std::vector<double> values, double pct);
 
