@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
 
 #include "tracker/matcher.hpp"
 
@@ -76,16 +75,9 @@ std::vector<int> trackFromLastFrame(const Frame& frame, const Frame& last, const
   std::vector<int> track(static_cast<std::size_t>(cur.size()), -1);
   std::vector<int> best_distance(static_cast<std::size_t>(cur.size()), std::numeric_limits<int>::max());
   const SE3 T_cur_last = frame.T_cam_world() * last.T_world_cam();
-  // Map points this frame matched at a keypoint that is not open: their last-frame keypoints already have
-  // their counterpart, so searching for them (most of the last frame) would find a closed keypoint or a
-  // look-alike.
-  std::unordered_set<const MapPoint*> matched_again;
-  for (int i = 0; i < cur.size(); ++i)
-    if (!open[i] && frame.points[i]) matched_again.insert(frame.points[i].get());
   const WindowGrid window(cur, g, options.radius_px);
   for (int j = 0; j < prev.size(); ++j) {
     if (!prev.hasDepth(j) || prev.excluded[j]) continue;
-    if (last.points[j] && matched_again.count(last.points[j].get())) continue;
     const Eigen::Vector3d p = T_cur_last * g.camera.backProject(prev.un[j], prev.depth[j]);
     if (p.z() <= 0.0) continue;
     const Eigen::Vector2d q = g.project(p);

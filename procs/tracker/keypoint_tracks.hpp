@@ -19,8 +19,7 @@ struct KeypointTrackOptions {
 // Per keypoint of `frame`: the index of its last-frame keypoint, or -1. Only keypoints with `open[i]`
 // set get one; each last-frame keypoint with depth is projected into `frame` with both poses, and its
 // best descriptor match in the window (any level within one of its own) must pass the ratio test, be
-// open, and not be taken by a closer match. A last-frame keypoint whose map point `frame` matched again at
-// a keypoint that is not open is not searched for.
+// open, and not be taken by a closer match.
 std::vector<int> trackFromLastFrame(const Frame& frame, const Frame& last, const FrameGeometry& g,
                                     const std::vector<uint8_t>& open, const KeypointTrackOptions& options);
 
