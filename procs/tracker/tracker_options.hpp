@@ -116,7 +116,7 @@ struct RelocalizationOptions {
 enum class DynamicMode { kNone, kBoxes, kPaper, kDepth, kGeometric };
 
 struct DynamicOptions {
-  DynamicMode mode = DynamicMode::kDepth;
+  DynamicMode mode = DynamicMode::kGeometric;
   double lambda = 0.9;           // P(z = d | dynamic) of a box observation (the paper's lambda)
   double omega = 0.9;            // P(z = s | static) of a box observation (the paper's omega)
   double unmatched_prior = 0.5;  // prior of a keypoint matched to nothing
