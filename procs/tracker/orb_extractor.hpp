@@ -42,9 +42,9 @@ class OrbExtractor {
 
   OrbOptions options_;
   ScalePyramid pyramid_;
-  std::vector<int> per_level_;          // features wanted per level
-  std::vector<int> circle_half_width_;  // of the orientation patch, per row offset
-  std::vector<cv::Point2f> pattern_;    // 512 points: pairs (2k, 2k+1)
+  std::vector<int> per_level_;                // features wanted per level
+  std::vector<int> circle_half_width_;        // of the orientation patch, per row offset
+  std::vector<float> pattern_x_, pattern_y_;  // 512 points: pairs (2k, 2k+1); apart, to rotate 4 at once
 };
 
 inline constexpr int kDescriptorBytes = 32;  // ORB: 256 binary tests
