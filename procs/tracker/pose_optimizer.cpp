@@ -101,9 +101,15 @@ void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCam
       double s = 0.0;
       for (int i = 0; i < rows; ++i) s += r[i] * r[i];
       const double w = a.weight * huberWeight(s, a.delta2);
-      const auto Jr = J.topRows(rows);
-      H.noalias() += w * Jr.transpose() * Jr;
-      g.noalias() += w * Jr.transpose() * Eigen::Map<const Eigen::VectorXd>(r, rows);
+      // Fixed sizes: a dynamic block here costs a general matrix product per residual.
+      if (rows == 3) {
+        H.noalias() += w * J.transpose() * J;
+        g.noalias() += w * J.transpose() * Eigen::Map<const Eigen::Vector3d>(r);
+      } else if (rows == 2) {
+        const auto J2 = J.topRows<2>();
+        H.noalias() += w * J2.transpose() * J2;
+        g.noalias() += w * J2.transpose() * Eigen::Map<const Eigen::Vector2d>(r);
+      }
     }
     bool improved = false;
     for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
