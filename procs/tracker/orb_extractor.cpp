@@ -20,6 +20,7 @@ constexpr int kPatternRadius = 13;  // test pairs stay inside this circle under 
 constexpr int kBorder = 19;         // corners nearer the edge cannot be described
 constexpr double kPatchSize = 31.0;
 constexpr int kPatternPoints = 512;  // 256 tests, 2 points each
+constexpr int kMomentLanes = 32;     // u = -15..16 per patch row (16: weight 0; kBorder keeps it inside)
 
 // Uniform in [0, 1) from the raw generator: std distributions differ between standard libraries.
 double uniform01(std::mt19937& rng) {
@@ -52,6 +53,13 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
   for (int v = 0; v <= kPatchRadius; ++v)
     circle_half_width_.push_back(
         static_cast<int>(std::floor(std::sqrt(kPatchRadius * kPatchRadius - v * v) + 0.5)));
+  for (int v = 0; v <= kPatchRadius; ++v)
+    for (int lane = 0; lane < kMomentLanes; ++lane) {
+      const int u = lane - kPatchRadius;
+      const bool in = std::abs(u) <= circle_half_width_[v];
+      moment_u_.push_back(static_cast<int16_t>(in ? u : 0));
+      moment_v_.push_back(static_cast<int16_t>(in ? v : 0));
+    }
 
   // BRIEF's isotropic Gaussian sampling (sigma = patch/5), restricted to the rotation-safe circle.
   std::mt19937 rng(20261122u);
@@ -124,6 +132,39 @@ float OrbExtractor::orientation(const cv::Mat& image, const cv::Point2f& pt) con
   const int step = static_cast<int>(image.step1());
   const uint8_t* center = image.ptr<uint8_t>(cvRound(pt.y)) + cvRound(pt.x);
   int m01 = 0, m10 = 0;
+#ifdef __SSE2__
+  // Row v and row -v together: m10 += u (below + above), m01 += v (below - above), as multiply-adds of 16-bit
+  // lanes against the circle's weights (0 outside it). Integer sums: the same moments as the loop below.
+  const __m128i zero = _mm_setzero_si128();
+  __m128i acc10 = zero, acc01 = zero;
+  for (int v = 0; v <= kPatchRadius; ++v) {
+    const uint8_t* below = center + v * step - kPatchRadius;
+    const uint8_t* above = center - v * step - kPatchRadius;
+    const __m128i* wu = reinterpret_cast<const __m128i*>(&moment_u_[v * kMomentLanes]);
+    const __m128i* wv = reinterpret_cast<const __m128i*>(&moment_v_[v * kMomentLanes]);
+    for (int half = 0; half < 2; ++half) {
+      const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(below + 16 * half));
+      const __m128i b_lo = _mm_unpacklo_epi8(b, zero), b_hi = _mm_unpackhi_epi8(b, zero);
+      const __m128i u_lo = _mm_loadu_si128(wu + 2 * half), u_hi = _mm_loadu_si128(wu + 2 * half + 1);
+      if (v == 0) {  // the centre row counts once
+        acc10 = _mm_add_epi32(acc10, _mm_add_epi32(_mm_madd_epi16(b_lo, u_lo), _mm_madd_epi16(b_hi, u_hi)));
+        continue;
+      }
+      const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(above + 16 * half));
+      const __m128i a_lo = _mm_unpacklo_epi8(a, zero), a_hi = _mm_unpackhi_epi8(a, zero);
+      const __m128i v_lo = _mm_loadu_si128(wv + 2 * half), v_hi = _mm_loadu_si128(wv + 2 * half + 1);
+      acc10 = _mm_add_epi32(acc10, _mm_madd_epi16(_mm_add_epi16(b_lo, a_lo), u_lo));
+      acc10 = _mm_add_epi32(acc10, _mm_madd_epi16(_mm_add_epi16(b_hi, a_hi), u_hi));
+      acc01 = _mm_add_epi32(acc01, _mm_madd_epi16(_mm_sub_epi16(b_lo, a_lo), v_lo));
+      acc01 = _mm_add_epi32(acc01, _mm_madd_epi16(_mm_sub_epi16(b_hi, a_hi), v_hi));
+    }
+  }
+  alignas(16) int32_t sum10[4], sum01[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(sum10), acc10);
+  _mm_store_si128(reinterpret_cast<__m128i*>(sum01), acc01);
+  m10 = sum10[0] + sum10[1] + sum10[2] + sum10[3];
+  m01 = sum01[0] + sum01[1] + sum01[2] + sum01[3];
+#else
   for (int u = -kPatchRadius; u <= kPatchRadius; ++u) m10 += u * center[u];
   for (int v = 1; v <= kPatchRadius; ++v) {
     int row_sum = 0;
@@ -135,8 +176,8 @@ float OrbExtractor::orientation(const cv::Mat& image, const cv::Point2f& pt) con
     }
     m01 += v * row_sum;
   }
-  float angle = static_cast<float>(cv::fastAtan2(static_cast<float>(m01), static_cast<float>(m10)));
-  return angle;
+#endif
+  return static_cast<float>(cv::fastAtan2(static_cast<float>(m01), static_cast<float>(m10)));
 }
 
 void OrbExtractor::describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint8_t* out) const {

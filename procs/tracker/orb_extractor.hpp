@@ -42,8 +42,11 @@ class OrbExtractor {
 
   OrbOptions options_;
   ScalePyramid pyramid_;
-  std::vector<int> per_level_;                // features wanted per level
-  std::vector<int> circle_half_width_;        // of the orientation patch, per row offset
+  std::vector<int> per_level_;          // features wanted per level
+  std::vector<int> circle_half_width_;  // of the orientation patch, per row offset
+  // Per row offset v, 32 lanes for u = -15..16: u inside the circle (else 0), and v inside it (else 0).
+  // The moments then come as multiply-adds of whole rows (orientation()).
+  std::vector<int16_t> moment_u_, moment_v_;
   std::vector<float> pattern_x_, pattern_y_;  // 512 points: pairs (2k, 2k+1); apart, to rotate 4 at once
 };
 
