@@ -119,7 +119,7 @@ void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, co
 
 float DynamicStage::neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const {
   const Features& f = *frame.features;
-  if (options_.mode != DynamicMode::kGeometric || options_.neighbour_radius_px <= 0 || f.depth[i] <= 0)
+  if (options_.neighbour_radius_px <= 0 || f.depth[i] <= 0)
     return static_cast<float>(options_.unmatched_prior);
   double sum = 0.0;
   int n = 0;

@@ -64,6 +64,7 @@ class DynamicStage {
   // Whether keypoint i lies beyond the geometric limit from where p_world projects under the frame's pose.
   bool movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,
                         const Eigen::Vector3d& p_world) const;
+  // kGeometric, an unmatched keypoint: the mean posterior of matched neighbours at its depth (else 0.5).
   float neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const;
   float clampProbability(double p) const;
   // A prior carried from an earlier frame: with kGeometric, what was static may have started to move
