@@ -75,7 +75,8 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
   }
 }
 
-void OrbExtractor::detectLevel(const cv::Mat& image, int target, std::vector<cv::KeyPoint>& out) const {
+void OrbExtractor::detectLevel(const cv::Mat& image, int target, const SparseRegions& sparse,
+                               std::vector<cv::KeyPoint>& out) const {
   std::vector<cv::KeyPoint> corners;
   cv::FAST(image, corners, options_.fast_min_threshold, true);
   const int w = image.cols, h = image.rows;
@@ -116,15 +117,49 @@ void OrbExtractor::detectLevel(const cv::Mat& image, int target, std::vector<cv:
   for (auto& b : buckets)
     std::sort(b.begin(), b.end(), [&](int a, int c) { return kept[a].response > kept[c].response; });
   out.clear();
-  for (std::size_t rank = 0; static_cast<int>(out.size()) < target; ++rank) {
-    bool any = false;
-    for (const auto& b : buckets) {
-      if (rank >= b.size()) continue;
-      any = true;
-      out.push_back(kept[b[rank]]);
-      if (static_cast<int>(out.size()) >= target) break;
+  if (sparse.boxes.empty() || sparse.share >= 1.0) {
+    std::vector<int> all(buckets.size());
+    for (std::size_t b = 0; b < buckets.size(); ++b) all[b] = static_cast<int>(b);
+    spread(kept, buckets, all, target, false, out);
+    return;
+  }
+  // Buckets whose centre lies in a sparse box count `share` of their area; each group gets its part of
+  // the target and is spread on its own (its last, partial round by response, not by position).
+  std::vector<int> dense_buckets, sparse_buckets;
+  for (int by = 0; by < brows; ++by)
+    for (int bx = 0; bx < bcols; ++bx) {
+      const cv::Point2f centre(static_cast<float>(kBorder + (bx + 0.5) * side),
+                               static_cast<float>(kBorder + (by + 0.5) * side));
+      bool in = false;
+      for (const cv::Rect2f& r : sparse.boxes) in = in || r.contains(centre);
+      (in ? sparse_buckets : dense_buckets).push_back(by * bcols + bx);
     }
-    if (!any) break;
+  const double weight_dense = static_cast<double>(dense_buckets.size());
+  const double weight_sparse = static_cast<double>(sparse_buckets.size()) * sparse.share;
+  const int target_sparse =
+      static_cast<int>(std::lround(target * weight_sparse / std::max(1e-9, weight_dense + weight_sparse)));
+  spread(kept, buckets, dense_buckets, target - target_sparse, true, out);
+  // What the static scene could not use goes back to the boxes.
+  spread(kept, buckets, sparse_buckets, target - static_cast<int>(out.size()), true, out);
+}
+
+void OrbExtractor::spread(const std::vector<cv::KeyPoint>& kept, const std::vector<std::vector<int>>& buckets,
+                          const std::vector<int>& which, int target, bool strongest_last_round,
+                          std::vector<cv::KeyPoint>& out) {
+  // Round k takes the k-th strongest keypoint of every bucket.
+  const std::size_t goal = out.size() + static_cast<std::size_t>(std::max(0, target));
+  for (std::size_t rank = 0; out.size() < goal; ++rank) {
+    std::vector<int> round;
+    for (const int b : which)
+      if (rank < buckets[b].size()) round.push_back(buckets[b][rank]);
+    if (round.empty()) break;
+    if (strongest_last_round && out.size() + round.size() > goal)
+      std::sort(round.begin(), round.end(),
+                [&](int a, int c) { return kept[a].response > kept[c].response; });
+    for (const int i : round) {
+      if (out.size() >= goal) break;
+      out.push_back(kept[i]);
+    }
   }
 }
 
@@ -215,7 +250,7 @@ void OrbExtractor::describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint
   }
 }
 
-OrbFeatures OrbExtractor::extract(const cv::Mat& gray) const {
+OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const SparseRegions& sparse) const {
   CV_Assert(gray.type() == CV_8UC1);
   OrbFeatures result;
   std::vector<cv::Mat> descriptor_blocks;
@@ -229,8 +264,12 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray) const {
       cv::resize(level_image, next, size, 0, 0, cv::INTER_LINEAR);
       level_image = next;
     }
+    SparseRegions level_sparse{{}, sparse.share};
+    const float inv = static_cast<float>(1.0 / pyramid_.scale[level]);
+    for (const cv::Rect2f& r : sparse.boxes)
+      level_sparse.boxes.emplace_back(r.x * inv, r.y * inv, r.width * inv, r.height * inv);
     std::vector<cv::KeyPoint> keys;
-    detectLevel(level_image, per_level_[level], keys);
+    detectLevel(level_image, per_level_[level], level_sparse, keys);
     if (keys.empty()) continue;
     cv::Mat blurred;
     cv::GaussianBlur(level_image, blurred, cv::Size(7, 7), 2, 2, cv::BORDER_REFLECT_101);

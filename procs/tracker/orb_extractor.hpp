@@ -28,15 +28,31 @@ struct OrbFeatures {
   cv::Mat descriptors;             // keys.size() x 32, CV_8U
 };
 
+// Parts of the image that should get fewer keypoints than their area's share: buckets whose centre lies in
+// one of `boxes` (level-0 pixels) count `share` of their area when the budget is split.
+// Keypoints on a mover cannot hold the pose: the budget they would take goes to the static scene.
+struct SparseRegions {
+  std::vector<cv::Rect2f> boxes;
+  double share = 1.0;
+};
+
 class OrbExtractor {
  public:
   explicit OrbExtractor(const OrbOptions& options);
   // Thread-safe (no mutable state). gray: CV_8UC1.
-  OrbFeatures extract(const cv::Mat& gray) const;
+  OrbFeatures extract(const cv::Mat& gray, const SparseRegions& sparse = {}) const;
   const ScalePyramid& pyramid() const { return pyramid_; }
 
  private:
-  void detectLevel(const cv::Mat& image, int target, std::vector<cv::KeyPoint>& out) const;
+  // sparse: its boxes in this level's pixels.
+  void detectLevel(const cv::Mat& image, int target, const SparseRegions& sparse,
+                   std::vector<cv::KeyPoint>& out) const;
+  // Appends up to target of kept to out, round by round over the buckets `which` (indices into buckets,
+  // each sorted by response); a last, partial round in bucket order, or by response when
+  // strongest_last_round.
+  static void spread(const std::vector<cv::KeyPoint>& kept, const std::vector<std::vector<int>>& buckets,
+                     const std::vector<int>& which, int target, bool strongest_last_round,
+                     std::vector<cv::KeyPoint>& out);
   float orientation(const cv::Mat& image, const cv::Point2f& pt) const;
   void describe(const cv::Mat& blurred, const cv::KeyPoint& kp, uint8_t* out) const;
 

@@ -74,6 +74,9 @@ TrackResult Tracker::track(const TrackerInput& input) {
           velocity_.reset();
         }
         result.num_tracked = countTracked(frame);
+        // Before a new keyframe adds its points: the pose's own inliers.
+        result.keypoint_in_pose.resize(frame.points.size());
+        for (std::size_t i = 0; i < frame.points.size(); ++i) result.keypoint_in_pose[i] = inPose(frame, i);
         if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
       } else {
         state_ = TrackingState::kLost;
@@ -89,6 +92,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
     result.num_dynamic = frame.numDynamic();
     result.keypoint_dynamic = frame.dynamic;
     result.keypoint_in_region.assign(frame.box_z.begin(), frame.box_z.end());
+    if (result.keypoint_in_pose.empty()) result.keypoint_in_pose.assign(frame.points.size(), 0);
     result.keypoints.reserve(frame.features->keys.size());
     for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
     if (result.new_keyframe) {
@@ -111,14 +115,26 @@ Frame Tracker::makeFrame(const TrackerInput& input, TrackResult& result) const {
     cv::cvtColor(input.image, gray, cv::COLOR_BGR2GRAY);
   else
     gray = input.image;
-  auto features = buildFeatures(extractor_.extract(gray), input.depth, *geometry_, input.keypoint_weight,
-                                input.exclusion_mask);
+  auto features = buildFeatures(extractor_.extract(gray, sparseRegions(input)), input.depth, *geometry_,
+                                input.keypoint_weight, input.exclusion_mask);
   result.stamp = input.stamp;
   result.seq = input.seq;
   result.num_keypoints = features->size();
   result.num_excluded = features->numExcluded();
   result.extract_ms = watch.elapsedMs();
   return Frame(input.seq, input.stamp, std::move(features));
+}
+
+SparseRegions Tracker::sparseRegions(const TrackerInput& input) const {
+  const DynamicOptions& d = config_.dynamic;
+  SparseRegions sparse;
+  if (!input.boxes || d.box_keypoint_share >= 1.0 ||
+      (d.mode != DynamicMode::kDepth && d.mode != DynamicMode::kGeometric))
+    return sparse;
+  sparse.share = d.box_keypoint_share;
+  for (const ObjectBox& b : *input.boxes)
+    if (b.level == DynamicLevel::kHigh) sparse.boxes.push_back(b.box);
+  return sparse;
 }
 
 bool Tracker::initialise(Frame& frame, TrackResult& result) {
@@ -220,12 +236,14 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
 }
 
+bool Tracker::inPose(const Frame& frame, std::size_t i) const {
+  const auto& mp = frame.points[i];
+  return mp && !frame.outlier[i] && !mp->bad && !mp->observations.empty() && !frame.isDynamic(i);
+}
+
 int Tracker::countTracked(const Frame& frame) const {
   int n = 0;
-  for (std::size_t i = 0; i < frame.points.size(); ++i) {
-    const auto& mp = frame.points[i];
-    n += mp && !frame.outlier[i] && !mp->bad && !mp->observations.empty() && !frame.isDynamic(i);
-  }
+  for (std::size_t i = 0; i < frame.points.size(); ++i) n += inPose(frame, i);
   return n;
 }
 

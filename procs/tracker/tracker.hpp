@@ -56,6 +56,9 @@ struct TrackResult {
   std::vector<uint8_t> keypoint_dynamic;
   // The region test's verdict on each keypoint this frame (empty: no boxes), to tell why one was missed.
   std::vector<uint8_t> keypoint_in_region;
+  // Whether each keypoint was a pose inlier (matched to a map point, not an outlier, not dynamic): a mover's
+  // keypoint that is one pulls the camera along with it.
+  std::vector<uint8_t> keypoint_in_pose;
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
   double dynamic_ms = 0.0;     // the dynamic stage: observations, priors, geometric test, keyframe mask
@@ -106,6 +109,9 @@ class Tracker {
   void prepareLastFrame();
   void rememberFrame(const Frame& frame);
   int countTracked(const Frame& frame) const;
+  // The input's person boxes, where the keypoint budget is spent sparingly (depth and geometric modes).
+  SparseRegions sparseRegions(const TrackerInput& input) const;
+  bool inPose(const Frame& frame, std::size_t i) const;
 
   // A tracked frame, relative to its reference keyframe by id: holding the keyframe itself would keep
   // every culled keyframe and its features alive for the whole run. One per frame for the whole run, so

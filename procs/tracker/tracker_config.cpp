@@ -196,6 +196,7 @@ DynamicOptions dynamicOptions(const Config& c) {
   readAtLeast(c, "cluster_link_px", o.cluster_link_px, 0.0);
   readAtLeast(c, "cluster_min_moved", o.cluster_min_moved, 0);
   readAtLeast(c, "mask_keypoint_radius_px", o.mask_keypoint_radius_px, 0);
+  readIn(c, "box_keypoint_share", o.box_keypoint_share, 0.0, 1.0);
   readAtLeast(c, "stale_box_max_age_s", o.stale_box_max_age_s, 0.0);
   readAtLeast(c, "stale_box_growth_px_per_s", o.stale_box_growth_px_per_s, 0.0);
   return o;

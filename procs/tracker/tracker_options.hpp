@@ -155,6 +155,10 @@ struct DynamicOptions {
   double cluster_link_px = 60.0;
   int cluster_min_moved = 5;
   int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
+  // Depth and geometric: the ORB spread counts the area of the frame's person (high-dynamic) boxes at this
+  // share, so the keypoint budget goes mostly to the static scene that holds the pose (1: boxes change
+  // nothing, as in the paper).
+  double box_keypoint_share = 0.25;
   // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old,
   // each grown by stale_box_growth_px_per_s times their age (0: such frames are tracked on priors alone).
   double stale_box_max_age_s = 0.5;

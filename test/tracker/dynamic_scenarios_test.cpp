@@ -56,7 +56,9 @@ void count(const TrackResult& r, const capture::SyntheticFrame& f, Score& s) {
   }
 }
 
-Score run(const std::string& scenario, DynamicMode mode) {
+// box_keypoint_share 1: the keypoint budget spread as the paper's extractor spreads it, so that the shares
+// of keypoints kept out compare with the paper's (the default budget puts fewer keypoints on people).
+Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_share = 1.0) {
   capture::SyntheticSceneConfig sc = test::scenarioConfig(scenario);
   sc.num_frames = kFrames;
   const capture::SyntheticScene scene(sc);
@@ -64,6 +66,7 @@ Score run(const std::string& scenario, DynamicMode mode) {
   TrackerConfig config;
   config.mapping.threaded = false;  // reproducible
   config.dynamic.mode = mode;
+  config.dynamic.box_keypoint_share = box_keypoint_share;
   Tracker tracker(scene.camera(), config);
   Score s;
   Trajectory trajectory;
@@ -82,11 +85,11 @@ Score run(const std::string& scenario, DynamicMode mode) {
   tracker.finish();
   s.ate = eval::computeAte(scene.groundTruth(), tracker.trajectory()).stats.rmse;
   std::printf(
-      "%-14s %-9s ATE %.2f mm, lost %d; kept out: people %.1f %% of %ld, unknown %.1f %% of %ld, "
+      "%-14s %-9s share %.2f ATE %.2f mm, lost %d; kept out: people %.1f %% of %ld, unknown %.1f %% of %ld, "
       "static %.1f %% of %ld\n",
-      scenario.c_str(), toString(mode), s.ate * 1000, s.lost, 100 * s.recall(s.known_out, s.known_on),
-      s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on), s.unknown_on,
-      100 * s.recall(s.static_out, s.static_on), s.static_on);
+      scenario.c_str(), toString(mode), box_keypoint_share, s.ate * 1000, s.lost,
+      100 * s.recall(s.known_out, s.known_on), s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on),
+      s.unknown_on, 100 * s.recall(s.static_out, s.static_on), s.static_on);
   return s;
 }
 
@@ -111,7 +114,9 @@ TEST(DynamicScenario, PeopleWalkingAreKeptOut) {
 }
 
 // A crowd covering over half the view for 2 s: the static variant follows the crowd; depth and the default
-// (geometric) keep it out.
+// (geometric) keep it out. With the default keypoint budget (person boxes counted at a quarter of their
+// area) the static scene gets the keypoints the crowd would take, and the trajectory is better: 7.9 mm
+// against 15.6 when this was written (two more seeds: 8.6 against 10.3, 11.2 against 14.6).
 TEST(DynamicScenario, CrowdIsKeptOutAndTheStaticVariantIsWorse) {
   const Score depth = run("crowd", DynamicMode::kDepth);
   expectPeopleKeptOut(depth, 0.03);
@@ -120,6 +125,11 @@ TEST(DynamicScenario, CrowdIsKeptOutAndTheStaticVariantIsWorse) {
   const Score none = run("crowd", DynamicMode::kNone);
   EXPECT_GT(none.ate, 5.0 * depth.ate) << "the static variant should be clearly worse";
   EXPECT_GT(none.ate, 5.0 * geometric.ate) << "the static variant should be clearly worse";
+  const Score budget = run("crowd", DynamicMode::kGeometric, TrackerConfig{}.dynamic.box_keypoint_share);
+  EXPECT_LT(budget.ate, 0.012);
+  EXPECT_LT(budget.ate, 0.8 * geometric.ate) << "the static scene's keypoints should hold the pose better";
+  EXPECT_LE(budget.recall(budget.static_out, budget.static_on), 0.10);
+  EXPECT_EQ(budget.lost, 0);
 }
 
 // A textured box no detector knows pacing 2.4 m from the camera, over a quarter of the view: the pose must

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "shared_data.hpp"
 #include "tracker/orb_extractor.hpp"
 
 namespace bmp::tracker {
@@ -84,6 +86,42 @@ TEST(TrackerOrbExtractor, DescriptorsMatchUnderRotation) {
   }
   ASSERT_GT(tested, 30);
   EXPECT_GT(matched, tested * 7 / 10) << matched << " of " << tested;
+}
+
+// A real TUM frame with people; the middle half of the image stands for a person's box.
+TEST(TrackerOrbExtractor, SparseBoxesGiveTheirBudgetToTheRestOfTheImage) {
+  cv::Mat gray =
+      cv::imread(test::sharedPath("images/tum_fr3_sitting_xyz_1341845839.214000.png"), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(gray.empty()) << "image missing under " << test::sharedDir();
+  cv::resize(gray, gray, cv::Size(640, 480));
+  const OrbExtractor extractor{OrbOptions{}};
+  const cv::Rect2f box(160, 0, 320, 480);
+  auto count = [&](const OrbFeatures& f) {
+    std::pair<int, int> in_out{0, 0};
+    for (const auto& k : f.keys) (box.contains(k.pt) ? in_out.first : in_out.second)++;
+    return in_out;
+  };
+  const OrbFeatures plain = extractor.extract(gray);
+  const OrbFeatures quarter = extractor.extract(gray, SparseRegions{{box}, 0.25});
+  const OrbFeatures none = extractor.extract(gray, SparseRegions{{box}, 0.0});
+  const auto [plain_in, plain_out] = count(plain);
+  const auto [quarter_in, quarter_out] = count(quarter);
+  const auto [none_in, none_out] = count(none);
+  ASSERT_GT(plain_in, 300);
+  ASSERT_GT(plain_out, 300);
+  // The budget is kept, and moves out of the box: at share 0.25 a half-image box gets about a fifth.
+  EXPECT_NEAR(static_cast<double>(quarter.keys.size()), static_cast<double>(plain.keys.size()), 10.0);
+  EXPECT_EQ(quarter.keys.size(), static_cast<std::size_t>(quarter.descriptors.rows));
+  EXPECT_LT(quarter_in, plain_in * 6 / 10) << quarter_in << " of " << quarter.keys.size();
+  EXPECT_GT(quarter_in, plain_in / 10) << "the box keeps some keypoints at share 0.25";
+  EXPECT_GT(quarter_out, plain_out * 13 / 10);
+  // Share 0: only bucket edges (centre outside the box) still reach into it.
+  EXPECT_LT(none_in, quarter_in);
+  EXPECT_GE(none_out, quarter_out);
+  // Share 1, or no boxes, is the plain spread, keypoint for keypoint.
+  const OrbFeatures one = extractor.extract(gray, SparseRegions{{box}, 1.0});
+  ASSERT_EQ(one.keys.size(), plain.keys.size());
+  for (std::size_t i = 0; i < one.keys.size(); ++i) ASSERT_EQ(one.keys[i].pt, plain.keys[i].pt) << i;
 }
 
 }  // namespace

@@ -137,6 +137,7 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.cluster_link_px", d.cluster_link_px);
   put("dynamic.cluster_min_moved", d.cluster_min_moved);
   put("dynamic.mask_keypoint_radius_px", d.mask_keypoint_radius_px);
+  put("dynamic.box_keypoint_share", d.box_keypoint_share);
   put("dynamic.stale_box_max_age_s", d.stale_box_max_age_s);
   put("dynamic.stale_box_growth_px_per_s", d.stale_box_growth_px_per_s);
 }

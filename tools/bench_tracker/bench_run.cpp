@@ -87,6 +87,8 @@ void printMaskScore(const MaskScore& s) {
               s.score.staticOutInsideRegions(), s.score.staticOutByHistory());
   std::printf("keypoints scored  %ld on movers, %ld static (from %.0f s on)\n", s.score.onMovers(),
               s.score.onStatic(), kScoreFromS);
+  std::printf("pose inliers on movers %ld of %ld (%.4f)\n", s.score.moversInPose(), s.score.inPose(),
+              s.score.inPose() > 0 ? static_cast<double>(s.score.moversInPose()) / s.score.inPose() : 0.0);
 }
 
 void printRunSummary(const OfflineResult& result, const FrameTimes& times) {
@@ -220,17 +222,24 @@ int runBenchTracker(const bmp::ArgParser& args) {
   auto scored = std::make_shared<MaskScore>();
   const bool score = args.flag("score-masks");
   options.keep_results = false;
-  options.on_result = [report = options.on_result, last, times, scored, score](const TrackResult& r,
-                                                                               const OfflineFrame& f) {
+  const bool verbose = args.flag("verbose");
+  options.on_result = [report = options.on_result, last, times, scored, score, verbose](
+                          const TrackResult& r, const OfflineFrame& f) {
     times->extract.add(r.extract_ms);
     times->wait.add(r.lock_wait_ms);
     times->dynamic.add(r.dynamic_ms);
+    report(r, f);
     if (score) {
       if (!scored->first_stamp) scored->first_stamp = f.stamp;
+      KeypointScore frame;
+      frame.add(r, f.mover_mask);
+      if (verbose)
+        std::printf(
+            "          pose inliers on movers %3ld of %3ld, movers' keypoints kept out %3ld of %3ld\n",
+            frame.moversInPose(), frame.inPose(), frame.moversOut(), frame.onMovers());
       if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);
     }
     *last = r;
-    report(r, f);
   };
   const OfflineResult result = runOffline(tracker, input.frames, options);
   const bmp::Trajectory& groundtruth = input.groundtruth;

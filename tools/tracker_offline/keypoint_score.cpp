@@ -17,13 +17,19 @@ void KeypointScore::add(const TrackResult& result, const cv::Mat& movers) {
   const bool regions = !result.keypoint_in_region.empty();
   if (regions && result.keypoint_in_region.size() != result.keypoints.size())
     throw std::invalid_argument("KeypointScore: keypoints and their region verdicts differ in number");
+  const bool pose = !result.keypoint_in_pose.empty();
+  if (pose && result.keypoint_in_pose.size() != result.keypoints.size())
+    throw std::invalid_argument("KeypointScore: keypoints and their pose flags differ in number");
   for (std::size_t k = 0; k < result.keypoints.size(); ++k) {
     const cv::Point p(cvRound(result.keypoints[k].x), cvRound(result.keypoints[k].y));
     if (p.x < 0 || p.y < 0 || p.x >= movers.cols || p.y >= movers.rows) continue;
     const bool out = result.keypoint_dynamic[k] != 0;
     const bool in_region = regions && result.keypoint_in_region[k] != 0;
+    const bool in_pose = pose && result.keypoint_in_pose[k] != 0;
+    in_pose_ += in_pose;
     if (movers.at<uint8_t>(p) != 0) {
       ++mover_;
+      mover_in_pose_ += in_pose;
       mover_out_ += out;
       missed_outside_ += !out && !in_region;
     } else {

@@ -16,6 +16,7 @@ class KeypointScore {
   long onMovers() const { return mover_; }
   long onStatic() const { return static_; }
   long flagged() const { return mover_out_ + static_out_; }
+  long moversOut() const { return mover_out_; }
   // Of the keypoints kept out, the share on movers (1 when none was kept out).
   double precision() const;
   // Of the keypoints on movers, the share kept out (1 when none was on a mover).
@@ -29,10 +30,14 @@ class KeypointScore {
   long missedInsideRegions() const { return mover_ - mover_out_ - missed_outside_; }
   long staticOutInsideRegions() const { return static_out_in_region_; }
   long staticOutByHistory() const { return static_out_ - static_out_in_region_; }
+  // Pose inliers (empty flags: none counted), and those of them on movers: what pulls the camera along.
+  long inPose() const { return in_pose_; }
+  long moversInPose() const { return mover_in_pose_; }
 
  private:
   long mover_ = 0, mover_out_ = 0, static_ = 0, static_out_ = 0;
   long missed_outside_ = 0, static_out_in_region_ = 0;
+  long in_pose_ = 0, mover_in_pose_ = 0;
 };
 
 }  // namespace bmp::tracker
