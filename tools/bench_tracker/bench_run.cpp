@@ -234,7 +234,8 @@ int runBenchTracker(const bmp::ArgParser& args) {
       KeypointScore frame;
       frame.add(r, f.mover_mask);
       if (verbose)
-        std::printf(
+        std::fprintf(  // beside the frame's progress line
+            stderr,
             "          pose inliers on movers %3ld of %3ld, movers' keypoints kept out %3ld of %3ld\n",
             frame.moversInPose(), frame.inPose(), frame.moversOut(), frame.onMovers());
       if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);
