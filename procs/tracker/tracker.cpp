@@ -73,10 +73,11 @@ TrackResult Tracker::track(const TrackerInput& input) {
         } else {
           velocity_.reset();
         }
-        result.num_tracked = countTracked(frame);
         // Before a new keyframe adds its points: the pose's own inliers.
         result.keypoint_in_pose.resize(frame.points.size());
         for (std::size_t i = 0; i < frame.points.size(); ++i) result.keypoint_in_pose[i] = inPose(frame, i);
+        result.num_tracked = static_cast<int>(
+            std::count(result.keypoint_in_pose.begin(), result.keypoint_in_pose.end(), uint8_t{1}));
         if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
       } else {
         state_ = TrackingState::kLost;

@@ -231,13 +231,14 @@ int runBenchTracker(const bmp::ArgParser& args) {
     report(r, f);
     if (score) {
       if (!scored->first_stamp) scored->first_stamp = f.stamp;
-      KeypointScore frame;
-      frame.add(r, f.mover_mask);
-      if (verbose)
+      if (verbose) {
+        KeypointScore frame;
+        frame.add(r, f.mover_mask);
         std::fprintf(  // beside the frame's progress line
             stderr,
             "          pose inliers on movers %3ld of %3ld, movers' keypoints kept out %3ld of %3ld\n",
             frame.moversInPose(), frame.inPose(), frame.moversOut(), frame.onMovers());
+      }
       if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);
     }
     *last = r;
