@@ -1,5 +1,7 @@
 #include "tracker/orb_extractor.hpp"
 
+#include "tracker/cell_corners.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,7 +11,6 @@
 #include <emmintrin.h>
 #endif
 
-#include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace bmp::tracker {
@@ -77,28 +78,9 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
 
 void OrbExtractor::detectLevel(const cv::Mat& image, int target, const SparseRegions& sparse,
                                std::vector<cv::KeyPoint>& out) const {
-  std::vector<cv::KeyPoint> corners;
-  cv::FAST(image, corners, options_.fast_min_threshold, true);
+  std::vector<cv::KeyPoint> kept =
+      cellCorners(image, {kBorder, options_.cell_size, options_.fast_threshold, options_.fast_min_threshold});
   const int w = image.cols, h = image.rows;
-  const int cell = options_.cell_size;
-  const int cols = (w + cell - 1) / cell, rows = (h + cell - 1) / cell;
-  // A cell keeps only its strong corners when it has any, else its weak ones (texture-poor regions).
-  std::vector<uint8_t> strong(static_cast<std::size_t>(cols * rows), 0);
-  std::vector<cv::KeyPoint> inside;
-  inside.reserve(corners.size());
-  for (const auto& kp : corners) {
-    if (kp.pt.x < kBorder || kp.pt.y < kBorder || kp.pt.x >= w - kBorder || kp.pt.y >= h - kBorder) continue;
-    inside.push_back(kp);
-    if (kp.response >= options_.fast_threshold)
-      strong[static_cast<int>(kp.pt.y) / cell * cols + static_cast<int>(kp.pt.x) / cell] = 1;
-  }
-  std::vector<cv::KeyPoint> kept;
-  kept.reserve(inside.size());
-  for (const auto& kp : inside) {
-    const bool cell_strong =
-        strong[static_cast<int>(kp.pt.y) / cell * cols + static_cast<int>(kp.pt.x) / cell];
-    if (!cell_strong || kp.response >= options_.fast_threshold) kept.push_back(kp);
-  }
   if (static_cast<int>(kept.size()) <= target) {
     out = std::move(kept);
     return;
