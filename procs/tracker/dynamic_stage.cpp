@@ -55,7 +55,7 @@ std::vector<DynamicStage::MovingRegion> DynamicStage::movingRegions(
   ro.medium_held_overlap = static_cast<float>(options_.medium_held_overlap);
   ro.medium_moving_keypoints = static_cast<float>(options_.medium_moving_keypoints);
   const std::vector<uint8_t> moving = movingBoxes(boxes, ro, moving_share);
-  const bool refine = options_.mode == DynamicMode::kDepth || options_.mode == DynamicMode::kGeometric;
+  const bool refine = options_.beyondPaper();
   std::vector<MovingRegion> regions;
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     if (!moving[b]) continue;

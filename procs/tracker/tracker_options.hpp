@@ -117,6 +117,8 @@ enum class DynamicMode { kNone, kBoxes, kPaper, kDepth, kGeometric };
 
 struct DynamicOptions {
   DynamicMode mode = DynamicMode::kGeometric;
+  // Beyond the paper (depth and geometric): boxes are cut to the person, and their keypoint budget shrinks.
+  bool beyondPaper() const { return mode == DynamicMode::kDepth || mode == DynamicMode::kGeometric; }
   double lambda = 0.9;           // P(z = d | dynamic) of a box observation (the paper's lambda)
   double omega = 0.9;            // P(z = s | static) of a box observation (the paper's omega)
   double unmatched_prior = 0.5;  // prior of a keypoint matched to nothing
