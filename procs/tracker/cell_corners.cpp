@@ -31,10 +31,17 @@ std::vector<cv::KeyPoint> cellCorners(const cv::Mat& image, const CellCornerOpti
   const cv::Rect usable(b, b, w - 2 * b, h - 2 * b);
   const cv::Rect whole(0, 0, w, h);
   std::vector<cv::KeyPoint> weak;
+  // One run per stretch of neighbouring weak cells in a cell row: each call has a fixed cost.
   for (int cy = 0; cy < rows; ++cy)
-    for (int cx = 0; cx < cols; ++cx) {
-      if (strong_cell[cy * cols + cx]) continue;
-      const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
+    for (int cx = 0; cx < cols;) {
+      if (strong_cell[cy * cols + cx]) {
+        ++cx;
+        continue;
+      }
+      int end = cx + 1;
+      while (end < cols && !strong_cell[cy * cols + end]) ++end;
+      const cv::Rect area = cv::Rect(cx * cell, cy * cell, (end - cx) * cell, cell) & usable;
+      cx = end;
       if (area.empty()) continue;
       const cv::Rect grown =
           cv::Rect(area.x - kReach, area.y - kReach, area.width + 2 * kReach, area.height + 2 * kReach) &
