@@ -14,21 +14,22 @@ constexpr int kReach = 4;
 std::vector<cv::KeyPoint> cellCorners(const cv::Mat& image, const CellCornerOptions& o) {
   const int w = image.cols, h = image.rows, cell = o.cell, b = o.border;
   const int cols = (w + cell - 1) / cell, rows = (h + cell - 1) / cell;
-  const auto inside = [&](const cv::Point2f& p) {
-    return p.x >= b && p.y >= b && p.x < w - b && p.y < h - b;
+  // FAST's corners lie on whole pixels.
+  const auto pixel = [](const cv::KeyPoint& kp) {
+    return cv::Point(static_cast<int>(kp.pt.x), static_cast<int>(kp.pt.y));
   };
+  const cv::Rect usable(b, b, w - 2 * b, h - 2 * b);
   std::vector<cv::KeyPoint> strong;
   cv::FAST(image, strong, std::max(o.threshold, o.min_threshold), true);
   std::vector<cv::KeyPoint> out;
   out.reserve(strong.size());
   std::vector<uint8_t> strong_cell(static_cast<std::size_t>(cols * rows), 0);
   for (const auto& kp : strong) {
-    if (!inside(kp.pt)) continue;
+    if (!usable.contains(pixel(kp))) continue;
     out.push_back(kp);
-    strong_cell[static_cast<int>(kp.pt.y) / cell * cols + static_cast<int>(kp.pt.x) / cell] = 1;
+    strong_cell[pixel(kp).y / cell * cols + pixel(kp).x / cell] = 1;
   }
   if (o.min_threshold >= o.threshold) return out;
-  const cv::Rect usable(b, b, w - 2 * b, h - 2 * b);
   const cv::Rect whole(0, 0, w, h);
   std::vector<cv::KeyPoint> weak;
   // One run per stretch of neighbouring weak cells in a cell row: each call has a fixed cost.
@@ -49,7 +50,7 @@ std::vector<cv::KeyPoint> cellCorners(const cv::Mat& image, const CellCornerOpti
       cv::FAST(image(grown), weak, o.min_threshold, true);
       for (auto kp : weak) {
         kp.pt.x += static_cast<float>(grown.x), kp.pt.y += static_cast<float>(grown.y);
-        if (area.contains(cv::Point(static_cast<int>(kp.pt.x), static_cast<int>(kp.pt.y)))) out.push_back(kp);
+        if (area.contains(pixel(kp))) out.push_back(kp);
       }
     }
   // FAST's own order, which ties in the later sort by response depend on.

@@ -1,7 +1,5 @@
 #include "tracker/orb_extractor.hpp"
 
-#include "tracker/cell_corners.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -12,6 +10,8 @@
 #endif
 
 #include <opencv2/imgproc.hpp>
+
+#include "tracker/cell_corners.hpp"
 
 namespace bmp::tracker {
 
