@@ -25,9 +25,10 @@ std::vector<cv::KeyPoint> cellCorners(const cv::Mat& image, const CellCornerOpti
   out.reserve(strong.size());
   std::vector<uint8_t> strong_cell(static_cast<std::size_t>(cols * rows), 0);
   for (const auto& kp : strong) {
-    if (!usable.contains(pixel(kp))) continue;
+    const cv::Point p = pixel(kp);
+    if (!usable.contains(p)) continue;
     out.push_back(kp);
-    strong_cell[pixel(kp).y / cell * cols + pixel(kp).x / cell] = 1;
+    strong_cell[p.y / cell * cols + p.x / cell] = 1;
   }
   if (o.min_threshold >= o.threshold) return out;
   const cv::Rect whole(0, 0, w, h);
