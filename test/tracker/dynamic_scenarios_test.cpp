@@ -113,23 +113,32 @@ TEST(DynamicScenario, PeopleWalkingAreKeptOut) {
   EXPECT_EQ(none.known_out + none.static_out, 0);
 }
 
-// A crowd covering over half the view for 2 s: the static variant follows the crowd; depth and the default
-// (geometric) keep it out. With the default keypoint budget (person boxes counted at a quarter of their
-// area) the static scene gets the keypoints the crowd would take, and the trajectory is better: 7.9 mm
-// against 15.6 when this was written (two more seeds: 8.6 against 10.3, 11.2 against 14.6).
-TEST(DynamicScenario, CrowdIsKeptOutAndTheStaticVariantIsWorse) {
-  const Score depth = run("crowd", DynamicMode::kDepth);
-  expectPeopleKeptOut(depth, 0.03);
+// A crowd covering over half the view for 2 s: depth and the default (geometric) keep it out, and the
+// static variant follows it. One run or pair of runs per test, so that each stays well inside the test
+// timeout on a loaded 2-core machine (together they took 147 s on a quiet one, and over 300 s beside a build
+// and two busy programs).
+TEST(DynamicScenario, CrowdIsKeptOutByTheDepthVariant) {
+  expectPeopleKeptOut(run("crowd", DynamicMode::kDepth), 0.03);
+}
+
+// With the default keypoint budget (person boxes counted at a quarter of their area) the static scene gets
+// the keypoints the crowd would take, and the trajectory is better: 7.9 mm against 15.6 when this was written
+// (two more seeds: 8.6 against 10.3, 11.2 against 14.6).
+TEST(DynamicScenario, CrowdIsKeptOutByTheDefaultVariantAndItsKeypointBudgetHelps) {
   const Score geometric = run("crowd", DynamicMode::kGeometric);
   expectPeopleKeptOut(geometric, 0.03);
-  const Score none = run("crowd", DynamicMode::kNone);
-  EXPECT_GT(none.ate, 5.0 * depth.ate) << "the static variant should be clearly worse";
-  EXPECT_GT(none.ate, 5.0 * geometric.ate) << "the static variant should be clearly worse";
   const Score budget = run("crowd", DynamicMode::kGeometric, TrackerConfig{}.dynamic.box_keypoint_share);
   EXPECT_LT(budget.ate, 0.012);
   EXPECT_LT(budget.ate, 0.8 * geometric.ate) << "the static scene's keypoints should hold the pose better";
   EXPECT_LE(budget.recall(budget.static_out, budget.static_on), 0.10);
   EXPECT_EQ(budget.lost, 0);
+}
+
+// Without the dynamic stage the crowd carries the pose: over 5 times the 30 mm the variants above are held
+// to (428 mm when this was written).
+TEST(DynamicScenario, TheStaticVariantFollowsTheCrowd) {
+  const Score none = run("crowd", DynamicMode::kNone);
+  EXPECT_GT(none.ate, 5.0 * 0.03) << "the static variant should be clearly worse";
 }
 
 // A textured box no detector knows pacing 2.4 m from the camera, over a quarter of the view: the pose must
