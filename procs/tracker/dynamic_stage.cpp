@@ -117,17 +117,28 @@ void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, co
   }
 }
 
-float DynamicStage::neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const {
+KeypointWindowGrid DynamicStage::matchedNeighbours(const Frame& frame, const FrameGeometry& g) const {
+  // The keypoints a neighbour prior may come from: those in the frame's grid (not excluded) with a usable
+  // match and depth. Packed once per frame, an unmatched keypoint's search reads no other keypoint.
+  const Features& f = *frame.features;
+  std::vector<int> matched;
+  if (options_.neighbour_radius_px <= 0) return KeypointWindowGrid(f, g, g.max_x - g.min_x, matched);
+  for (const auto& cell : f.grid)
+    for (int j : cell)
+      if (usableMatch(frame.points[j]) && f.depth[j] > 0) matched.push_back(j);
+  return KeypointWindowGrid(f, g, options_.neighbour_radius_px, matched);
+}
+
+float DynamicStage::neighbourPrior(const Frame& frame, const KeypointWindowGrid& matched, int i) const {
   const Features& f = *frame.features;
   if (options_.neighbour_radius_px <= 0 || f.depth[i] <= 0)
     return static_cast<float>(options_.unmatched_prior);
+  // Exact in any order: a double holds the sum of a few hundred floats no smaller than the floor.
   double sum = 0.0;
   int n = 0;
-  f.forEachInArea(g, f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px, [&](int j) {
-    const auto& mp = frame.points[j];
-    if (j == i || !usableMatch(mp) || f.depth[j] <= 0) return;
+  matched.forEach(f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px, -1, -1, [&](int j) {
     if (std::abs(f.depth[j] - f.depth[i]) > options_.neighbour_depth_m) return;
-    sum += mp->moving_probability;
+    sum += frame.points[j]->moving_probability;
     ++n;
   });
   return n > 0 ? static_cast<float>(sum / n) : static_cast<float>(options_.unmatched_prior);
@@ -164,10 +175,11 @@ void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* l
   if (options_.mode == DynamicMode::kGeometric) {
     // Each keypoint's verdict: -1 none, 0 where it should be, 1 moved.
     std::vector<int8_t> verdict(static_cast<std::size_t>(f.size()), -1);
+    const KeypointWindowGrid matched = matchedNeighbours(frame, g);
     for (int i = 0; i < f.size(); ++i) {
       const auto& mp = frame.points[i];
       if (!usableMatch(mp)) {
-        observeBoxes(frame, i, neighbourPrior(frame, g, i));
+        observeBoxes(frame, i, neighbourPrior(frame, matched, i));
         continue;
       }
       // The residual against the camera motion estimated without the dynamic keypoints.

@@ -19,6 +19,7 @@
 
 #include "tracker/dynamic_regions.hpp"
 #include "tracker/frame.hpp"
+#include "tracker/keypoint_window_grid.hpp"
 #include "tracker/moving_probability.hpp"
 #include "tracker/tracker_options.hpp"
 
@@ -64,8 +65,10 @@ class DynamicStage {
   // Whether keypoint i lies beyond the geometric limit from where p_world projects under the frame's pose.
   bool movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,
                         const Eigen::Vector3d& p_world) const;
-  // kGeometric, an unmatched keypoint: the mean posterior of matched neighbours at its depth (else 0.5).
-  float neighbourPrior(const Frame& frame, const FrameGeometry& g, int i) const;
+  // kGeometric, an unmatched keypoint: the mean posterior of matched neighbours at its depth (else 0.5),
+  // from the frame's matched keypoints bucketed by matchedNeighbours().
+  KeypointWindowGrid matchedNeighbours(const Frame& frame, const FrameGeometry& g) const;
+  float neighbourPrior(const Frame& frame, const KeypointWindowGrid& matched, int i) const;
   float clampProbability(double p) const;
   // A prior carried from an earlier frame: with kGeometric, what was static may have started to move
   // since (and the reverse), with probability geo_transition; else unchanged, as in the paper.

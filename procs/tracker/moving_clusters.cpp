@@ -4,12 +4,14 @@
 #include <cmath>
 #include <numeric>
 
+#include "tracker/keypoint_window_grid.hpp"
+
 namespace bmp::tracker {
 
 std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry& g,
                                           const std::vector<int8_t>& verdict, double link_px,
                                           double link_depth_m, int min_size) {
-  // Union-find over the keypoints that moved; neighbours come from the frame's grid, so the cost stays
+  // Union-find over the keypoints that moved; neighbours come from a grid of them alone, so the cost stays
   // near linear however many moved.
   std::vector<int> parent(static_cast<std::size_t>(f.size()));
   std::iota(parent.begin(), parent.end(), 0);
@@ -19,10 +21,16 @@ std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry
   };
   const auto usable = [&](int i) { return verdict[i] == 1 && f.depth[i] > 0; };
   const double link2 = link_px * link_px;
-  for (int i = 0; i < f.size(); ++i) {
-    if (!usable(i)) continue;
-    f.forEachInArea(g, f.un[i].x(), f.un[i].y(), link_px, [&](int j) {
-      if (j <= i || !usable(j) || (f.un[i] - f.un[j]).squaredNorm() > link2 ||
+  // Only the frame's grid (not excluded) can link; packed, a search reads no keypoint that did not move.
+  std::vector<int> moved;
+  if (link_px > 0)
+    for (const auto& cell : f.grid)
+      for (int j : cell)
+        if (usable(j)) moved.push_back(j);
+  const KeypointWindowGrid grid(f, g, link_px > 0 ? link_px : g.max_x - g.min_x, moved);
+  for (int i : moved) {
+    grid.forEach(f.un[i].x(), f.un[i].y(), link_px, -1, -1, [&](int j) {
+      if (j <= i || (f.un[i] - f.un[j]).squaredNorm() > link2 ||
           std::abs(f.depth[i] - f.depth[j]) > link_depth_m)
         return;
       parent[root(j)] = root(i);

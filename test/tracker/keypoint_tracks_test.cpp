@@ -3,12 +3,15 @@
 // 15 px is beyond the motion model's window, so no map point would follow the box.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "shared_data.hpp"
 #include "tracker/dynamic_stage.hpp"
 #include "tracker/keypoint_tracks.hpp"
+#include "tracker/matcher.hpp"
 
 namespace bmp::tracker {
 namespace {
@@ -82,6 +85,38 @@ TEST(KeypointTracks, FollowTheBoxBeyondTheMotionWindowAndTheRoomInPlace) {
   EXPECT_GT(box_tracked, on_box / 2) << "of " << on_box << " on the box";
   EXPECT_GT(room_tracked, 200);
   EXPECT_LT(wrong, (box_tracked + room_tracked) / 50) << "tracks to the wrong keypoint";
+}
+
+// The tracks are what their definition says (keypoint_tracks.hpp), computed the plain way over the frame's
+// own grid, also when only some keypoints are open: each open keypoint's track is its closest last-frame
+// keypoint by the ratio test among all the window's keypoints, open or not.
+TEST(KeypointTracks, EqualTheirDefinitionWhenOnlySomeKeypointsAreOpen) {
+  const SlidingBox scene;
+  ASSERT_FALSE(scene.box.empty()) << "images missing under " << test::sharedDir();
+  const Rig s;
+  const Frame last = s.frame(scene, 0), now = s.frame(scene, 1);
+  const Features &cur = *now.features, &prev = *last.features;
+  std::vector<uint8_t> open(static_cast<std::size_t>(cur.size()));
+  for (int i = 0; i < cur.size(); ++i) open[i] = i % 3 != 0;
+  const KeypointTrackOptions o;
+  const std::vector<int> track = trackFromLastFrame(now, last, s.g, open, o);
+  std::vector<int> expected(static_cast<std::size_t>(cur.size()), -1);
+  std::vector<int> best_distance(static_cast<std::size_t>(cur.size()), 1 << 30);
+  for (int j = 0; j < prev.size(); ++j) {
+    if (!prev.hasDepth(j)) continue;  // both poses are the identity: the keypoint stays where it was
+    const int level = prev.level(j);
+    ClosestTwo c;
+    cur.forEachInArea(s.g, prev.un[j].x(), prev.un[j].y(), o.radius_px, std::max(0, level - 1), level + 1,
+                      [&](int i) { c.offer(i, hamming(prev.descriptor(j), cur.descriptor(i))); });
+    if (c.best < 0 || c.best_dist > o.max_distance || c.best_dist >= o.ratio * c.second_dist) continue;
+    if (!open[c.best] || c.best_dist >= best_distance[c.best]) continue;
+    best_distance[c.best] = c.best_dist;
+    expected[c.best] = j;
+  }
+  const int tracked =
+      static_cast<int>(std::count_if(track.begin(), track.end(), [](int j) { return j >= 0; }));
+  EXPECT_GT(tracked, 200);
+  EXPECT_EQ(track, expected);
 }
 
 // Share of keypoints kept out on the box and in the room, frame by frame, with no box from the detector.

@@ -1,0 +1,74 @@
+// The packed window grid against the frame's own grid walk, on a real TUM frame's ORB keypoints: for any
+// window, level range and subset, it returns exactly the keypoints Features::forEachInArea returns.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+#include <vector>
+
+#include "shared_data.hpp"
+#include "tracker/keypoint_window_grid.hpp"
+#include "tracker/orb_extractor.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+struct RealFrame {
+  CameraIntrinsics k;
+  TrackerConfig config;
+  FrameGeometry g{k, config};
+  std::shared_ptr<const Features> f;
+  RealFrame() {
+    cv::Mat gray = cv::imread(test::sharedPath("images/tum_fr3_sitting_xyz_1341845839.214000.png"),
+                              cv::IMREAD_GRAYSCALE);
+    if (gray.empty()) return;
+    cv::resize(gray, gray, cv::Size(640, 480));
+    const OrbExtractor extractor(config.orb);
+    f = buildFeatures(extractor.extract(gray), cv::Mat(), g, nullptr, cv::Mat());
+  }
+};
+
+std::vector<int> sorted(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+TEST(KeypointWindowGrid, FindsWhatTheFramesGridWalkFindsForAnyWindowLevelsAndSubset) {
+  const RealFrame s;
+  ASSERT_TRUE(s.f) << "image missing under " << test::sharedDir();
+  const Features& f = *s.f;
+  ASSERT_GT(f.size(), 500);
+  std::mt19937 rng(7);
+  // A subset, as the dynamic stage packs one: every third keypoint of the frame's grid.
+  std::vector<int> all, subset;
+  for (const auto& cell : f.grid)
+    for (int i : cell) {
+      all.push_back(i);
+      if (i % 3 == 0) subset.push_back(i);
+    }
+  std::uniform_real_distribution<double> u(s.g.min_x - 20, s.g.max_x + 20), v(s.g.min_y - 20, s.g.max_y + 20);
+  int found = 0;
+  for (const double radius : {8.0, 24.0, 40.0, 60.0}) {
+    const KeypointWindowGrid whole(f, s.g, radius, all), part(f, s.g, radius, subset);
+    for (int q = 0; q < 300; ++q) {
+      const double x = u(rng), y = v(rng);
+      const int lo = static_cast<int>(rng() % 9) - 1, hi = lo < 0 ? -1 : lo + static_cast<int>(rng() % 3);
+      std::vector<int> expected, expected_part, got, got_part;
+      f.forEachInArea(s.g, x, y, radius, lo, hi, [&](int i) {
+        expected.push_back(i);
+        if (i % 3 == 0) expected_part.push_back(i);
+      });
+      whole.forEach(x, y, radius, lo, hi, [&](int i) { got.push_back(i); });
+      part.forEach(x, y, radius, lo, hi, [&](int i) { got_part.push_back(i); });
+      ASSERT_EQ(sorted(got), sorted(expected)) << "window at " << x << ", " << y << " r " << radius;
+      ASSERT_EQ(sorted(got_part), sorted(expected_part)) << "window at " << x << ", " << y << " r " << radius;
+      found += static_cast<int>(expected.size());
+    }
+  }
+  EXPECT_GT(found, 5000);  // the windows were not all empty
+}
+
+}  // namespace
+}  // namespace bmp::tracker
