@@ -122,7 +122,7 @@ KeypointWindowGrid DynamicStage::matchedNeighbours(const Frame& frame, const Fra
   // match and depth. Packed once per frame, an unmatched keypoint's search reads no other keypoint.
   const Features& f = *frame.features;
   std::vector<int> matched;
-  if (options_.neighbour_radius_px <= 0) return KeypointWindowGrid(f, g, g.max_x - g.min_x, matched);
+  if (options_.neighbour_radius_px <= 0) return KeypointWindowGrid(f, g, 0.0, matched);  // none to find
   for (const auto& cell : f.grid)
     for (int j : cell)
       if (usableMatch(frame.points[j]) && f.depth[j] > 0) matched.push_back(j);
@@ -133,7 +133,8 @@ float DynamicStage::neighbourPrior(const Frame& frame, const KeypointWindowGrid&
   const Features& f = *frame.features;
   if (options_.neighbour_radius_px <= 0 || f.depth[i] <= 0)
     return static_cast<float>(options_.unmatched_prior);
-  // Exact in any order: a double holds the sum of a few hundred floats no smaller than the floor.
+  // Exact in any order: every probability is a float in [kProbabilityFloor, 1] (a multiple of 2^-33), and a
+  // double holds the sum of up to about 2^20 of them without rounding.
   double sum = 0.0;
   int n = 0;
   matched.forEach(f.un[i].x(), f.un[i].y(), options_.neighbour_radius_px, -1, -1, [&](int j) {

@@ -7,7 +7,8 @@ namespace bmp::tracker {
 
 KeypointWindowGrid::KeypointWindowGrid(const Features& f, const FrameGeometry& g, double cell_px,
                                        const std::vector<int>& indices)
-    : min_x_(g.min_x), min_y_(g.min_y), cell_(std::max(1.0, cell_px)) {
+    // Cells no finer than the frame's grid: a tiny window (or none) must not cost an image-sized table.
+    : min_x_(g.min_x), min_y_(g.min_y), cell_(std::max({g.grid_cell_w, g.grid_cell_h, 1.0, cell_px})) {
   cols_ = std::max(1, static_cast<int>(std::ceil((g.max_x - g.min_x) / cell_)));
   rows_ = std::max(1, static_cast<int>(std::ceil((g.max_y - g.min_y) / cell_)));
   for (int i : indices) levels_ = std::max(levels_, f.level(i) + 1);

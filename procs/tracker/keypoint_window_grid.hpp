@@ -13,8 +13,8 @@ namespace bmp::tracker {
 
 class KeypointWindowGrid {
  public:
-  // Buckets keypoints `indices` of f in square cells `cell_px` wide over the image bounds; a keypoint
-  // outside them goes to the nearest edge cell.
+  // Buckets keypoints `indices` of f in square cells `cell_px` wide (at least the frame grid's cells) over
+  // the image bounds; a keypoint outside them goes to the nearest edge cell. Levels are ORB octaves (>= 0).
   KeypointWindowGrid(const Features& f, const FrameGeometry& g, double cell_px,
                      const std::vector<int>& indices);
 

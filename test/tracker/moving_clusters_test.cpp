@@ -2,6 +2,8 @@
 // the keypoints that stayed in their region.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "tracker/moving_clusters.hpp"
 
 namespace bmp::tracker {
@@ -66,6 +68,17 @@ TEST(MovingClusters, AMoverIsAClusterItsStaticSurroundIsNot) {
   EXPECT_EQ(movingClusters(*f, s.g, fewer, 60.0, 0.3, 5).size(), 2u);
   // Depth splits what the image joins: the body at 2 m and a second group 1 m behind it are two clusters.
   EXPECT_EQ(movingClusters(*f, s.g, s.verdict, 60.0, 0.3, 2).size(), 2u);
+
+  // A keypoint outside the frame's grid (beyond the bounds its corners give, under strong distortion) that
+  // moved still links to the body's keypoints around it. Keypoint 0 is the body's first: only its own search
+  // can link it, as no search finds a keypoint outside the grid.
+  Features outside = *f;
+  for (auto& cell : outside.grid) cell.erase(std::remove(cell.begin(), cell.end(), 0), cell.end());
+  const auto joined = movingClusters(outside, s.g, s.verdict, 60.0, 0.3, 5);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_EQ(joined.front().size, 9);
+  // No link distance: nothing links, so no body is big enough.
+  EXPECT_TRUE(movingClusters(*f, s.g, s.verdict, 0.0, 0.3, 5).empty());
 }
 
 }  // namespace
