@@ -121,12 +121,9 @@ KeypointWindowGrid DynamicStage::matchedNeighbours(const Frame& frame, const Fra
   // The keypoints a neighbour prior may come from: those in the frame's grid (not excluded) with a usable
   // match and depth. Packed once per frame, an unmatched keypoint's search reads no other keypoint.
   const Features& f = *frame.features;
-  std::vector<int> matched;
-  if (options_.neighbour_radius_px <= 0) return KeypointWindowGrid(f, g, 0.0, matched);  // none to find
-  for (const auto& cell : f.grid)
-    for (int j : cell)
-      if (usableMatch(frame.points[j]) && f.depth[j] > 0) matched.push_back(j);
-  return KeypointWindowGrid(f, g, options_.neighbour_radius_px, matched);
+  const double r = options_.neighbour_radius_px;
+  return KeypointWindowGrid::ofFrameGrid(
+      f, g, r, [&](int j) { return r > 0 && usableMatch(frame.points[j]) && f.depth[j] > 0; });
 }
 
 float DynamicStage::neighbourPrior(const Frame& frame, const KeypointWindowGrid& matched, int i) const {

@@ -17,6 +17,17 @@ class KeypointWindowGrid {
   // the image bounds; a keypoint outside them goes to the nearest edge cell. Levels are ORB octaves (>= 0).
   KeypointWindowGrid(const Features& f, const FrameGeometry& g, double cell_px,
                      const std::vector<int>& indices);
+  // The frame grid's keypoints (not excluded, inside the bounds) for which keep(i) holds.
+  template <class Keep>
+  static KeypointWindowGrid ofFrameGrid(const Features& f, const FrameGeometry& g, double cell_px,
+                                        Keep&& keep) {
+    std::vector<int> indices;
+    for (const auto& cell : f.grid)
+      for (int i : cell)
+        if (keep(i)) indices.push_back(i);
+    return KeypointWindowGrid(f, g, cell_px, indices);
+  }
+  bool empty() const { return entries_.empty(); }
 
   // Calls fn(i) for each bucketed keypoint with |u_i - u| < r and |v_i - v| < r (the fine grid's test) on
   // levels [lo, hi]; lo < 0 or hi < 0: no bound on that side.

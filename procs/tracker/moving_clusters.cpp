@@ -23,14 +23,10 @@ std::vector<MovingCluster> movingClusters(const Features& f, const FrameGeometry
   const double link2 = link_px * link_px;
   // Any keypoint that moved searches, but only those in the frame's grid (not excluded, inside its bounds)
   // can be found; packed, a search reads no keypoint that did not move.
-  std::vector<int> moved;
-  if (link_px > 0)
-    for (const auto& cell : f.grid)
-      for (int j : cell)
-        if (usable(j)) moved.push_back(j);
-  const KeypointWindowGrid grid(f, g, link_px, moved);
+  const auto grid =
+      KeypointWindowGrid::ofFrameGrid(f, g, link_px, [&](int j) { return link_px > 0 && usable(j); });
   for (int i = 0; i < f.size(); ++i) {
-    if (!usable(i) || moved.empty()) continue;
+    if (!usable(i) || grid.empty()) continue;
     grid.forEach(f.un[i].x(), f.un[i].y(), link_px, -1, -1, [&](int j) {
       if (j <= i || (f.un[i] - f.un[j]).squaredNorm() > link2 ||
           std::abs(f.depth[i] - f.depth[j]) > link_depth_m)
