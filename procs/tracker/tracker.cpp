@@ -129,7 +129,7 @@ Frame Tracker::makeFrame(const TrackerInput& input, TrackResult& result) const {
 SparseRegions Tracker::sparseRegions(const TrackerInput& input) const {
   const DynamicOptions& d = config_.dynamic;
   SparseRegions sparse;
-  if (!input.boxes || d.box_keypoint_share >= 1.0 || !d.beyondPaper()) return sparse;
+  if (!input.boxes || d.box_keypoint_share >= 1.0 || d.mode == DynamicMode::kNone) return sparse;
   sparse.share = d.box_keypoint_share;
   for (const ObjectBox& b : *input.boxes)
     if (b.level == DynamicLevel::kHigh) sparse.boxes.push_back(b.box);

@@ -109,7 +109,7 @@ class Tracker {
   void prepareLastFrame();
   void rememberFrame(const Frame& frame);
   int countTracked(const Frame& frame) const;
-  // The input's person boxes, where the keypoint budget is spent sparingly (depth and geometric modes).
+  // The input's person boxes, where the keypoint budget is spent sparingly (every mode with boxes).
   SparseRegions sparseRegions(const TrackerInput& input) const;
   bool inPose(const Frame& frame, std::size_t i) const;
 

@@ -117,7 +117,7 @@ enum class DynamicMode { kNone, kBoxes, kPaper, kDepth, kGeometric };
 
 struct DynamicOptions {
   DynamicMode mode = DynamicMode::kGeometric;
-  // Beyond the paper (depth and geometric): boxes are cut to the person, and their keypoint budget shrinks.
+  // Beyond the paper (depth and geometric): boxes are cut to the person.
   bool beyondPaper() const { return mode == DynamicMode::kDepth || mode == DynamicMode::kGeometric; }
   double lambda = 0.9;           // P(z = d | dynamic) of a box observation (the paper's lambda)
   double omega = 0.9;            // P(z = s | static) of a box observation (the paper's omega)
@@ -157,9 +157,9 @@ struct DynamicOptions {
   double cluster_link_px = 60.0;
   int cluster_min_moved = 5;
   int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
-  // Depth and geometric: the ORB spread counts the area of the frame's person (high-dynamic) boxes at this
-  // share, so the keypoint budget goes mostly to the static scene that holds the pose (1: boxes change
-  // nothing, as in the paper).
+  // Every variant with boxes: the ORB spread counts the area of the frame's person (high-dynamic) boxes
+  // at this share, so the keypoint budget goes mostly to the static scene that holds the pose (1: boxes
+  // change nothing, as in the paper's extractor).
   double box_keypoint_share = 0.25;
   // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old,
   // each grown by stale_box_growth_px_per_s times their age (0: such frames are tracked on priors alone).
