@@ -16,7 +16,8 @@ bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options) {
          options.mature_span_s;
 }
 
-int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options) {
+int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options,
+                      const PositionPrior* prior) {
   const Features& f = *frame.features;
   std::vector<PoseObservation> obs;
   std::vector<int> index;
@@ -42,7 +43,7 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
   SE3 T_cam_world = frame.T_cam_world();
   const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
   T_cam_world = findConsensusPose(T_cam_world, obs, camera, options).T_cam_world;
-  const int inliers = optimizePose(T_cam_world, obs, camera, options);
+  const int inliers = optimizePose(T_cam_world, obs, camera, options, prior);
   frame.setPose(T_cam_world.inverse());
   for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;
   return inliers;

@@ -2,6 +2,7 @@
 // Pose-only optimisation of a frame against its matched map points: the glue between Frame and
 // optimizePose. Excluded keypoints are left out; keypoint weights scale their cost.
 #include "tracker/frame.hpp"
+#include "tracker/pose_optimizer.hpp"
 #include "tracker/tracker_options.hpp"
 
 namespace bmp::tracker {
@@ -12,7 +13,9 @@ class MapPoint;
 bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options);
 
 // Sets the frame's pose and outlier flags; returns the number of inliers.
-int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options);
+// prior: where the frame should be (MotionPrior), or null.
+int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options,
+                      const PositionPrior* prior = nullptr);
 // Unmatches the outliers; returns the matches left that are map points (not temporary ones).
 int dropOutliers(Frame& frame);
 

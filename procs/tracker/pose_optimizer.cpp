@@ -4,6 +4,8 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace bmp::tracker {
 
@@ -62,8 +64,17 @@ double huberWeight(double s, double delta2) {
   return std::sqrt(delta2 / s);
 }
 
-double totalCost(const SE3& T, const std::vector<Active>& active, const PoseCamera& c) {
-  double cost = 0.0;
+// The camera centre c = -R^T t. Under a left increment (omega, v) it moves by -R^T v (to first order; omega
+// turns it about itself), so the prior's Jacobian is [0 | -R^T] / sigma.
+constexpr double kPriorGateChi2 = 16.27;  // 99.9 % chi-square, 3 dof
+
+Eigen::Vector3d priorError(const SE3& T, const PositionPrior& prior) {
+  return (-(T.rotation().transpose() * T.translation()) - prior.center) / prior.sigma_m;
+}
+
+double totalCost(const SE3& T, const std::vector<Active>& active, const PoseCamera& c,
+                 const PositionPrior* prior) {
+  double cost = prior != nullptr ? priorError(T, *prior).squaredNorm() : 0.0;
   double r[3];
   for (const auto& a : active) {
     const int rows = residualAndJacobian(T, a, c, r, nullptr);
@@ -88,8 +99,9 @@ SE3 applyIncrement(const SE3& T, const Vec6& d) {
   return out;
 }
 
-void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCamera& c, int iterations) {
-  double cost = totalCost(T, active, c);
+void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCamera& c, int iterations,
+                        const PositionPrior* prior) {
+  double cost = totalCost(T, active, c, prior);
   double lambda = 1e-4;
   double r[3];
   Eigen::Matrix<double, 3, 6> J;
@@ -111,6 +123,11 @@ void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCam
         g.noalias() += w * J2.transpose() * Eigen::Map<const Eigen::Vector2d>(r);
       }
     }
+    if (prior != nullptr) {  // J^T J = I / sigma^2 on the translation block, whatever R is
+      const double info = 1.0 / (prior->sigma_m * prior->sigma_m);
+      H.diagonal().tail<3>().array() += info;
+      g.tail<3>() -= T.rotation() * priorError(T, *prior) / prior->sigma_m;
+    }
     bool improved = false;
     for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
       Mat6 A = H;
@@ -118,7 +135,7 @@ void levenbergMarquardt(SE3& T, const std::vector<Active>& active, const PoseCam
       const Vec6 d = A.ldlt().solve(-g);
       if (!d.allFinite()) break;
       const SE3 candidate = applyIncrement(T, d);
-      const double candidate_cost = totalCost(candidate, active, c);
+      const double candidate_cost = totalCost(candidate, active, c, prior);
       if (candidate_cost < cost) {
         const double gain = cost - candidate_cost;
         T = candidate;
@@ -148,9 +165,11 @@ double poseChi2(const SE3& T, const PoseObservation& o, const PoseCamera& c) {
   return e2 * o.information;
 }
 
-int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const PoseCamera& camera,
-                 const PoseOptimizerOptions& options) {
-  SE3 T = T_cam_world;
+namespace {
+
+// Rounds of optimisation and outlier classification from T; returns the inliers.
+int solveRounds(SE3& T, std::vector<PoseObservation>& obs, const PoseCamera& camera,
+                const PoseOptimizerOptions& options, const PositionPrior* prior) {
   std::vector<Active> active;
   active.reserve(obs.size());
   int inliers = 0;
@@ -164,7 +183,7 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
       active.push_back({&o, std::sqrt(o.information), o.weight, delta2});
     }
     if (active.size() < 3) break;
-    levenbergMarquardt(T, active, camera, options.iterations_per_round);
+    levenbergMarquardt(T, active, camera, options.iterations_per_round, prior);
     // Reclassify every observation, so a point wrongly rejected early can return.
     inliers = 0;
     for (auto& o : obs) {
@@ -173,6 +192,26 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const Pose
       if (!o.outlier && o.weight > 0.0) ++inliers;
     }
     if (inliers < 10) break;
+  }
+  return inliers;
+}
+
+}  // namespace
+
+int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const PoseCamera& camera,
+                 const PoseOptimizerOptions& options, const PositionPrior* prior) {
+  if (prior != nullptr && !(prior->sigma_m > 0.0)) prior = nullptr;
+  SE3 T = T_cam_world;
+  std::vector<uint8_t> initial_outliers;
+  if (prior != nullptr)
+    for (const auto& o : obs) initial_outliers.push_back(o.outlier ? 1 : 0);
+  int inliers = solveRounds(T, obs, camera, options, prior);
+  // A pose the prediction cannot explain (the camera did accelerate): the prior would drag it and push its
+  // matches out as outliers. Solved again without it.
+  if (prior != nullptr && priorError(T, *prior).squaredNorm() > kPriorGateChi2) {
+    for (std::size_t k = 0; k < obs.size(); ++k) obs[k].outlier = initial_outliers[k] != 0;
+    T = T_cam_world;
+    inliers = solveRounds(T, obs, camera, options, nullptr);
   }
   T_cam_world = normalized(T);
   return inliers;

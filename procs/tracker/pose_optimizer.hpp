@@ -23,9 +23,15 @@ struct PoseCamera {
   double fx = 0, fy = 0, cx = 0, cy = 0, bf = 0;
 };
 
-// Refines T_cam_world in place; returns the number of inliers.
+// A Gaussian prior on the camera's position (its centre in the world), isotropic.
+struct PositionPrior {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double sigma_m = 0.0;
+};
+
+// Refines T_cam_world in place; returns the number of inliers. With a prior the position is also held to it.
 int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& observations, const PoseCamera& camera,
-                 const PoseOptimizerOptions& options);
+                 const PoseOptimizerOptions& options, const PositionPrior* prior = nullptr);
 
 // Squared whitened error of one observation under a pose (the statistic compared with chi2).
 double poseChi2(const SE3& T_cam_world, const PoseObservation& obs, const PoseCamera& camera);

@@ -28,7 +28,8 @@ Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
       geometry_(std::make_shared<const FrameGeometry>(camera, config)),
       extractor_(config.orb),
       dynamic_(config.dynamic, config.pose),
-      mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)) {}
+      mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)),
+      motion_prior_(config.pose) {}
 
 Tracker::~Tracker() {
   finish();
@@ -43,6 +44,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
   TrackResult result;
   Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
   dynamic_ms_ = 0.0;
+  position_prior_.reset();
   {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.observe(frame, input.boxes ? &*input.boxes : nullptr,
@@ -70,8 +72,10 @@ TrackResult Tracker::track(const TrackerInput& input) {
         if (state_ == TrackingState::kOk) {
           velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
           velocity_dt_ = frame.stamp - last_frame_.stamp;
+          motion_prior_.observe(last_frame_.center(), frame.center(), velocity_dt_);
         } else {
           velocity_.reset();
+          motion_prior_.reset();
         }
         // Before a new keyframe adds its points: the pose's own inliers.
         result.keypoint_in_pose.resize(frame.points.size());
@@ -82,6 +86,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
       } else {
         state_ = TrackingState::kLost;
         velocity_.reset();
+        motion_prior_.reset();
       }
     }
     if (tracked) rememberFrame(frame);

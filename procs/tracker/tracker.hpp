@@ -14,6 +14,7 @@
 #include "tracker/frame.hpp"
 #include "tracker/local_mapper.hpp"
 #include "tracker/map.hpp"
+#include "tracker/motion_prior.hpp"
 #include "tracker/orb_extractor.hpp"
 #include "tracker/tracker_options.hpp"
 
@@ -82,7 +83,10 @@ class Tracker {
   Trajectory keyFrameTrajectory();
   TrackingState state() const { return state_; }
   // Drops the constant-velocity prediction (e.g. after the input went back in time).
-  void forgetMotion() { velocity_.reset(); }
+  void forgetMotion() {
+    velocity_.reset();
+    motion_prior_.reset();
+  }
   // Boxes that came after their frame was tracked: if that frame made a keyframe, its keypoints and map
   // points take the observation. Returns whether a keyframe of that seq was found.
   bool applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes);
@@ -138,6 +142,8 @@ class Tracker {
   SE3 last_T_ref_cam_ = SE3::Identity();  // last frame relative to its reference keyframe
   std::optional<SE3> velocity_;           // T_last_current of the previous step ...
   double velocity_dt_ = 0.0;              // ... which spanned this many seconds
+  MotionPrior motion_prior_;
+  std::optional<PositionPrior> position_prior_;  // the current frame's, when predicted by constant velocity
   std::shared_ptr<KeyFrame> reference_kf_;
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;

@@ -112,6 +112,10 @@ PoseOptimizerOptions poseOptions(const Config& c) {
   read(c, "consensus_graded", o.consensus_graded);
   readAtLeast(c, "mature_observations", o.mature_observations, 0);
   readAtLeast(c, "mature_span_s", o.mature_span_s, 0.0);
+  readAtLeast(c, "motion_prior_accel", o.motion_prior_accel, 0.0);
+  readAtLeast(c, "motion_prior_velocity_gain", o.motion_prior_velocity_gain, 0.0);
+  c.check(o.motion_prior_velocity_gain > 0.0 && o.motion_prior_velocity_gain <= 1.0,
+          "motion_prior_velocity_gain", "must be in (0, 1]");
   o.young_point_weight = c.get<double>("young_point_weight", o.young_point_weight);
   c.check(o.young_point_weight > 0.0 && o.young_point_weight <= 1.0, "young_point_weight",
           "must be in (0, 1]");

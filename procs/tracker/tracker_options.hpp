@@ -66,6 +66,10 @@ struct PoseOptimizerOptions {
   // unknown_mover's 275 mm, once blamed on it, came from the consensus counting matches (consensus_graded).
   double mature_span_s = 1.0;
   double young_point_weight = 0.05;  // cost weight of a younger point, pose and local BA (temporary: 0 kfs)
+  // A frame's position is held to its constant-velocity prediction, with the spread an unknown acceleration
+  // of this size gives (m/s^2; 0: no prior): a / 2 dt^2, 4.5 mm at 30 Hz (motion_prior.hpp says why).
+  double motion_prior_accel = 9.0;
+  double motion_prior_velocity_gain = 0.3;  // each tracked frame's velocity enters the predicting one so
 };
 
 struct KeyframeOptions {

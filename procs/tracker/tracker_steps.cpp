@@ -39,7 +39,7 @@ void Tracker::optimizePose(Frame& frame) {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.applyPriors(frame);
   }
-  optimizeFramePose(frame, *geometry_, config_.pose);
+  optimizeFramePose(frame, *geometry_, config_.pose, position_prior_ ? &*position_prior_ : nullptr);
 }
 
 namespace {
@@ -67,6 +67,7 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   const std::optional<SE3> motion = scaledMotion(*velocity_, velocity_dt_, frame.stamp - last_frame_.stamp);
   if (!motion) return false;
   frame.setPose(last_frame_.T_world_cam() * *motion);
+  position_prior_ = motion_prior_.predict(last_frame_.center(), frame.stamp - last_frame_.stamp);
   int matches = matchFromLastFrame(frame, last_frame_, *geometry_, o, o.motion_search_radius);
   if (matches < o.min_matches_motion) {
     frame.clearMatches();
@@ -74,11 +75,15 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   }
   if (matches < o.min_matches_motion) {
     frame.clearMatches();
+    position_prior_.reset();
     return false;
   }
   optimizePose(frame);
   const bool ok = dropOutliers(frame) >= o.min_inliers_motion;
-  if (!ok) frame.clearMatches();
+  if (!ok) {
+    frame.clearMatches();
+    position_prior_.reset();  // the motion model failed: what tracks the frame next is not held to it
+  }
   return ok;
 }
 

@@ -78,6 +78,8 @@ void printMatcherAndPose(const TrackerConfig& c, FieldPrinter& put) {
   put("pose_optimizer.mature_observations", p.mature_observations);
   put("pose_optimizer.mature_span_s", p.mature_span_s);
   put("pose_optimizer.young_point_weight", p.young_point_weight);
+  put("pose_optimizer.motion_prior_accel", p.motion_prior_accel);
+  put("pose_optimizer.motion_prior_velocity_gain", p.motion_prior_velocity_gain);
 }
 
 void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
@@ -209,6 +211,8 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"matcher: {min_view_cos: -2}", "matcher.min_view_cos"},
       {"pose_optimizer: {chi2_rgbd: 0}", "pose_optimizer.chi2_rgbd"},
       {"pose_optimizer: {young_point_weight: 0}", "pose_optimizer.young_point_weight"},
+      {"pose_optimizer: {motion_prior_accel: -1}", "pose_optimizer.motion_prior_accel"},
+      {"pose_optimizer: {motion_prior_velocity_gain: 0}", "pose_optimizer.motion_prior_velocity_gain"},
       {"keyframes: {ref_ratio: 1.5}", "keyframes.ref_ratio"},
       {"keyframes: {revisit_angle_deg: 200}", "keyframes.revisit_angle_deg"},
       {"keyframes: {revisit_distance_m: -1}", "keyframes.revisit_distance_m"},
