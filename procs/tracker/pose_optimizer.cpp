@@ -64,10 +64,11 @@ double huberWeight(double s, double delta2) {
   return std::sqrt(delta2 / s);
 }
 
-// The camera centre c = -R^T t. Under a left increment (omega, v) it moves by -R^T v (to first order; omega
-// turns it about itself), so the prior's Jacobian is [0 | -R^T] / sigma.
+// A solve that ends with its position this far from the prior (squared, in sigmas) is redone without it.
 constexpr double kPriorGateChi2 = 16.27;  // 99.9 % chi-square, 3 dof
 
+// The camera centre c = -R^T t. Under a left increment (omega, v) it moves by -R^T v (to first order; omega
+// turns it about itself), so the prior's Jacobian is [0 | -R^T] / sigma.
 Eigen::Vector3d priorError(const SE3& T, const PositionPrior& prior) {
   return (-(T.rotation().transpose() * T.translation()) - prior.center) / prior.sigma_m;
 }
