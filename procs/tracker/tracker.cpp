@@ -74,8 +74,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
           velocity_dt_ = frame.stamp - last_frame_.stamp;
           motion_prior_.observe(last_frame_.center(), frame.center(), velocity_dt_);
         } else {
-          velocity_.reset();
-          motion_prior_.reset();
+          forgetMotion();
         }
         // Before a new keyframe adds its points: the pose's own inliers.
         result.keypoint_in_pose.resize(frame.points.size());
@@ -85,8 +84,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
         if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
       } else {
         state_ = TrackingState::kLost;
-        velocity_.reset();
-        motion_prior_.reset();
+        forgetMotion();
       }
     }
     if (tracked) rememberFrame(frame);

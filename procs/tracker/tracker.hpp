@@ -82,7 +82,8 @@ class Tracker {
   Trajectory trajectory();
   Trajectory keyFrameTrajectory();
   TrackingState state() const { return state_; }
-  // Drops the constant-velocity prediction (e.g. after the input went back in time).
+  // Drops the constant-velocity prediction and the position prior's velocity (lost, relocalised, or the
+  // input went back in time).
   void forgetMotion() {
     velocity_.reset();
     motion_prior_.reset();

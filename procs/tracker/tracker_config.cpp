@@ -113,7 +113,7 @@ PoseOptimizerOptions poseOptions(const Config& c) {
   readAtLeast(c, "mature_observations", o.mature_observations, 0);
   readAtLeast(c, "mature_span_s", o.mature_span_s, 0.0);
   readAtLeast(c, "motion_prior_accel", o.motion_prior_accel, 0.0);
-  readAtLeast(c, "motion_prior_velocity_gain", o.motion_prior_velocity_gain, 0.0);
+  o.motion_prior_velocity_gain = c.get<double>("motion_prior_velocity_gain", o.motion_prior_velocity_gain);
   c.check(o.motion_prior_velocity_gain > 0.0 && o.motion_prior_velocity_gain <= 1.0,
           "motion_prior_velocity_gain", "must be in (0, 1]");
   o.young_point_weight = c.get<double>("young_point_weight", o.young_point_weight);
