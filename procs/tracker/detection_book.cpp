@@ -6,6 +6,10 @@ void DetectionBook::add(int64_t seq, FrameBoxes boxes) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     const int64_t utime = boxes.utime;
+    if (boxes.usable) {
+      recent_[{seq, utime}] = boxes;
+      while (recent_.size() > kRecent) recent_.erase(recent_.begin());
+    }
     by_frame_[{seq, utime}] = std::move(boxes);
     while (by_frame_.size() > capacity_) {
       by_frame_.erase(by_frame_.begin());
@@ -26,14 +30,15 @@ std::optional<FrameBoxes> DetectionBook::take(int64_t seq, int64_t utime, std::c
   return out;
 }
 
-std::optional<FrameBoxes> DetectionBook::newestBefore(int64_t seq, int64_t min_seq) const {
+std::vector<FrameBoxes> DetectionBook::newestBefore(int64_t seq, int64_t min_seq, std::size_t n) const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  for (auto it = by_frame_.rbegin(); it != by_frame_.rend(); ++it) {
-    if (it->first.first >= seq || !it->second.usable) continue;
+  std::vector<FrameBoxes> out;
+  for (auto it = recent_.rbegin(); it != recent_.rend() && out.size() < n; ++it) {
+    if (it->first.first >= seq) continue;
     if (it->first.first < min_seq) break;  // ordered by seq: the rest are older still
-    return it->second;
+    out.push_back(it->second);
   }
-  return std::nullopt;
+  return out;
 }
 
 std::size_t DetectionBook::size() const {

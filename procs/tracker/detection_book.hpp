@@ -4,7 +4,7 @@
 //   - lockstep (wait > 0): the tracker waits for the frame's answer up to the wait, so every run sees the
 //     same boxes;
 //   - real time (wait = 0): it never waits; a frame whose answer is not there yet is observed with the
-//     newest earlier answer (newestBefore, grown for its age by the tracker node) or, without one, tracked
+//     newest earlier answer (newestBefore, moved on for its age by the tracker node) or, without one, tracked
 //     on the probabilities carried by its matches; an answer that comes later is handed over as late
 //     (applied to the keyframe the frame made, if it made one).
 // Answers are kept by (seq, stamp): one that names a frame's seq with another stamp (a forged or stale
@@ -37,9 +37,11 @@ class DetectionBook {
   // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came. Taken answers are
   // removed.
   std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
-  // A copy of the newest usable answer for a frame before seq and at or after min_seq (it stays in the
-  // book for its own frame); nullopt when there is none.
-  std::optional<FrameBoxes> newestBefore(int64_t seq, int64_t min_seq) const;
+  // Copies of the n newest usable answers for frames before seq and at or after min_seq, newest first,
+  // whether or not their frames took them: the book remembers the last kRecent usable answers. An answer
+  // not yet taken stays in the book for its own frame.
+  std::vector<FrameBoxes> newestBefore(int64_t seq, int64_t min_seq, std::size_t n) const;
+  static constexpr std::size_t kRecent = 4;
   std::size_t size() const;
   std::size_t capacity() const { return capacity_; }
   int64_t discarded() const;  // answers pushed out unused by newer ones
@@ -49,6 +51,7 @@ class DetectionBook {
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
   std::map<std::pair<int64_t, int64_t>, FrameBoxes> by_frame_;  // (seq, utime)
+  std::map<std::pair<int64_t, int64_t>, FrameBoxes> recent_;    // the newest usable answers, taken or not
   int64_t discarded_ = 0;
 };
 

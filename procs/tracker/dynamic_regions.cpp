@@ -74,4 +74,29 @@ std::vector<ObjectBox> grownForAge(std::vector<ObjectBox> boxes, double age_s, d
   return boxes;
 }
 
+std::vector<ObjectBox> movedForAge(std::vector<ObjectBox> newest, const std::vector<ObjectBox>& before,
+                                   double dt_s, double age_s, double min_iou) {
+  if (dt_s <= 0.0 || age_s <= 0.0) return newest;
+  const auto scale = static_cast<float>(age_s / dt_s);
+  for (ObjectBox& b : newest) {
+    if (b.level == DynamicLevel::kLow) continue;
+    const ObjectBox* partner = nullptr;
+    double best = min_iou;
+    for (const ObjectBox& e : before) {
+      if (e.class_id != b.class_id) continue;
+      const double inter = (b.box & e.box).area();
+      const double uni = b.box.area() + e.box.area() - inter;
+      if (uni > 0 && inter / uni >= best) {
+        best = inter / uni;
+        partner = &e;
+      }
+    }
+    if (!partner) continue;
+    const cv::Point2f shift = ((b.box.tl() + b.box.br()) - (partner->box.tl() + partner->box.br())) * 0.5f;
+    b.box.x += shift.x * scale;
+    b.box.y += shift.y * scale;
+  }
+  return newest;
+}
+
 }  // namespace bmp::tracker

@@ -202,6 +202,7 @@ DynamicOptions dynamicOptions(const Config& c) {
   readAtLeast(c, "mask_keypoint_radius_px", o.mask_keypoint_radius_px, 0);
   readIn(c, "box_keypoint_share", o.box_keypoint_share, 0.0, 1.0);
   readAtLeast(c, "stale_box_max_age_s", o.stale_box_max_age_s, 0.0);
+  readFraction(c, "stale_box_motion_iou", o.stale_box_motion_iou);
   readAtLeast(c, "stale_box_growth_px_per_s", o.stale_box_growth_px_per_s, 0.0);
   return o;
 }

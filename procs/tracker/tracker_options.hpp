@@ -165,10 +165,13 @@ struct DynamicOptions {
   // at this share, so the keypoint budget goes mostly to the static scene that holds the pose (1: boxes
   // change nothing, as in the paper's extractor).
   double box_keypoint_share = 0.25;
-  // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old,
-  // each grown by stale_box_growth_px_per_s times their age (0: such frames are tracked on priors alone).
+  // Real time: a frame whose own answer has not come is observed with the newest boxes at most this old
+  // (0: such frames are tracked on priors alone), each moved on by the image speed it showed since the
+  // answer before (its partner there: same class, intersection over union at least stale_box_motion_iou;
+  // 0: not moved) and grown by stale_box_growth_px_per_s times its age on every side.
   double stale_box_max_age_s = 0.5;
-  double stale_box_growth_px_per_s = 250.0;
+  double stale_box_motion_iou = 0.3;
+  double stale_box_growth_px_per_s = 0.0;
 };
 
 struct TrackerConfig {

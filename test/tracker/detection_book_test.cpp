@@ -52,7 +52,7 @@ TEST(DetectionBook, KeepsOnlyTheNewestAnswersAndCountsTheRest) {
 }
 
 // Real time: the newest usable answer before a frame stands in for its own, which it leaves in the book.
-TEST(DetectionBook, NewestBeforeIsACopyOfTheNewestUsableEarlierAnswer) {
+TEST(DetectionBook, NewestBeforeAreCopiesOfTheNewestUsableEarlierAnswers) {
   DetectionBook book;
   book.add(3, answer(3000, 1));
   book.add(5, answer(5000, 2));
@@ -60,13 +60,27 @@ TEST(DetectionBook, NewestBeforeIsACopyOfTheNewestUsableEarlierAnswer) {
   skipped.usable = false;
   book.add(6, skipped);
   book.add(9, answer(9000, 4));  // after the frame: not a stand-in
-  const auto got = book.newestBefore(8, 0);
-  ASSERT_TRUE(got);
-  EXPECT_EQ(got->utime, 5000) << "the skipped answer is no stand-in";
+  auto got = book.newestBefore(8, 0, 2);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].utime, 5000) << "the skipped answer is no stand-in";
+  EXPECT_EQ(got[1].utime, 3000);
   EXPECT_TRUE(book.take(5, 5000, kNoWait)) << "still there for its own frame";
-  EXPECT_EQ(book.newestBefore(8, 0)->utime, 3000);
-  EXPECT_FALSE(book.newestBefore(8, 4)) << "older than min_seq";
-  EXPECT_FALSE(book.newestBefore(3, 0));
+  // Its frame took it on time; it is still the newest look at the scene for the frames after.
+  got = book.newestBefore(8, 0, 1);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].utime, 5000);
+  EXPECT_EQ(book.newestBefore(8, 4, 2).size(), 1u) << "older than min_seq";
+  EXPECT_TRUE(book.newestBefore(3, 0, 2).empty());
+}
+
+// The stand-ins are remembered for the last few answers only: memory stays bounded however long the run.
+TEST(DetectionBook, RemembersOnlyTheNewestAnswersAsStandIns) {
+  DetectionBook book;
+  for (int64_t seq = 1; seq <= 10; ++seq) book.add(seq, answer(seq * 1000, 1));
+  const auto got = book.newestBefore(100, 0, 100);
+  ASSERT_EQ(got.size(), DetectionBook::kRecent);
+  EXPECT_EQ(got.front().utime, 10000);
+  EXPECT_EQ(got.back().utime, static_cast<int64_t>(10 - DetectionBook::kRecent + 1) * 1000);
 }
 
 // Lockstep waits for the frame's answer; an answer that comes while it waits ends the wait.

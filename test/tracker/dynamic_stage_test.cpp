@@ -103,5 +103,27 @@ TEST(DynamicRegions, StaleBoxesGrowWithTheirAgeButLowBoxesStay) {
   EXPECT_EQ(grownForAge(boxes, -1.0, 250.0)[0].box, boxes[0].box) << "no shrinking";
 }
 
+// Real time: the newest boxes (0.1 s after the answer before) stand in for a frame 0.05 s after them. The
+// person walked 20 px right in those 0.1 s, so their box goes on 10 px more; the chair of another class at
+// the person's old place gives no speed, the box with no partner stays, the monitor (low) never moves.
+TEST(DynamicRegions, StaleBoxesMoveOnAtTheSpeedTheyShowed) {
+  const std::vector<ObjectBox> before = {box(80, 100, 80, 200, DynamicLevel::kHigh),
+                                         box(500, 300, 40, 40, DynamicLevel::kHigh)};
+  std::vector<ObjectBox> newest = {box(100, 104, 80, 200, DynamicLevel::kHigh),
+                                   box(300, 100, 60, 60, DynamicLevel::kHigh),
+                                   box(200, 150, 50, 40, DynamicLevel::kLow)};
+  newest[1].class_id = 56;  // a chair: its own class, nothing of it before
+  const auto moved = movedForAge(newest, before, 0.1, 0.05, 0.3);
+  EXPECT_FLOAT_EQ(moved[0].box.x, 110.0f);
+  EXPECT_FLOAT_EQ(moved[0].box.y, 106.0f);
+  EXPECT_FLOAT_EQ(moved[0].box.width, 80.0f) << "moved, not grown";
+  EXPECT_EQ(moved[1].box, newest[1].box);
+  EXPECT_EQ(moved[2].box, newest[2].box);
+  // The small box before overlaps nothing: a partner needs the overlap.
+  const std::vector<ObjectBox> far = {box(400, 100, 80, 200, DynamicLevel::kHigh)};
+  EXPECT_EQ(movedForAge(newest, far, 0.1, 0.05, 0.3)[0].box, newest[0].box);
+  EXPECT_EQ(movedForAge(newest, before, 0.0, 0.05, 0.3)[0].box, newest[0].box) << "no speed from no time";
+}
+
 }  // namespace
 }  // namespace bmp::tracker

@@ -141,6 +141,7 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.mask_keypoint_radius_px", d.mask_keypoint_radius_px);
   put("dynamic.box_keypoint_share", d.box_keypoint_share);
   put("dynamic.stale_box_max_age_s", d.stale_box_max_age_s);
+  put("dynamic.stale_box_motion_iou", d.stale_box_motion_iou);
   put("dynamic.stale_box_growth_px_per_s", d.stale_box_growth_px_per_s);
 }
 
@@ -222,6 +223,7 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"relocalization: {min_matches: 3}", "relocalization.min_matches"},
       {"dynamic: {mode: bayes}", "dynamic.mode"},
       {"dynamic: {lambda: 1.2}", "dynamic.lambda"},
+      {"dynamic: {stale_box_motion_iou: 1.5}", "dynamic.stale_box_motion_iou"},
       {"dynamic: {lambda: 0.4, omega: 0.5}", "dynamic.omega"},
       {"dynamic: {threshold: -1}", "dynamic.threshold"},
       {"dynamic: {refine_band_m: 0}", "dynamic.refine_band_m"},

@@ -69,7 +69,7 @@ class TrackerNode {
   void refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict);  // likewise
   void process(const Queued& frame);
   void onDetections(const detections_t& msg);
-  // The frame's boxes: its own answer, or in real time the newest earlier ones grown for their age.
+  // The frame's boxes: its own answer, or in real time the newest earlier ones moved on for their age.
   struct FrameBoxChoice {
     std::optional<std::vector<ObjectBox>> boxes;  // none: the frame is tracked on its priors alone
     bool own = false;                             // the frame's own answer (not a stand-in)
