@@ -192,6 +192,10 @@ void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* l
 }
 
 void DynamicStage::observeGeometry(Frame& frame, int i, bool moved) const {
+  // Inside a moving region (a person's box, cut to the person by depth) only a large residual counts: a
+  // small one says the point is still now, not that it is not on a person, and people stand still. Counted,
+  // it wore a standing person's probability down below the threshold within a second or two.
+  if (!moved && !frame.box_z.empty() && frame.box_z[i] != 0) return;
   frame.moving[i] = clampProbability(updateMovingProbability(frame.moving[i], moved, geometric_));
   frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
 }

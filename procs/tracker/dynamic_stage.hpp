@@ -10,7 +10,9 @@
 //                     matched neighbours at its depth; each matched point's residual against the camera
 //                     motion is a second observation; so is each unmatched keypoint's residual against its
 //                     last-frame keypoint, tracked over a wide window (keypoint_tracks.hpp), which also
-//                     gives it that keypoint's posterior as prior. The map points take the posteriors.
+//                     gives it that keypoint's posterior as prior. Inside a moving region only a large
+//                     residual is an observation (a person standing still keeps the box's word). The map
+//                     points take the posteriors.
 // A keypoint over the threshold keeps its match, so its probability travels on, but takes no part in the
 // pose, new map points or local BA.
 #include <vector>

@@ -21,6 +21,7 @@ struct Score {
   double ate = 0.0;
   int lost = 0;
   long known_on = 0, known_out = 0;      // keypoints on movers the detector knows (people), kept out
+  long still_on = 0, still_out = 0;      // of those, on a person standing still
   long unknown_on = 0, unknown_out = 0;  // on the unknown mover (a textured box)
   long static_on = 0, static_out = 0;    // on the static scene
   double recall(long out, long on) const { return on > 0 ? static_cast<double>(out) / on : 1.0; }
@@ -46,9 +47,12 @@ void count(const TrackResult& r, const capture::SyntheticFrame& f, Score& s) {
     if (id == 0) {
       ++s.static_on;
       s.static_out += out;
-    } else if (f.movers.at(static_cast<std::size_t>(id - 1)).kind == capture::MoverKind::kPerson) {
+    } else if (const capture::MoverInfo& m = f.movers.at(static_cast<std::size_t>(id - 1));
+               m.kind == capture::MoverKind::kPerson) {
       ++s.known_on;
       s.known_out += out;
+      s.still_on += !m.moving;
+      s.still_out += !m.moving && out;
     } else {
       ++s.unknown_on;
       s.unknown_out += out;
@@ -86,10 +90,11 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
   s.ate = eval::computeAte(scene.groundTruth(), tracker.trajectory()).stats.rmse;
   std::printf(
       "%-14s %-9s share %.2f ATE %.2f mm, lost %d; kept out: people %.1f %% of %ld, unknown %.1f %% of %ld, "
-      "static %.1f %% of %ld\n",
+      "static %.1f %% of %ld; people standing still %.1f %% of %ld\n",
       scenario.c_str(), toString(mode), box_keypoint_share, s.ate * 1000, s.lost,
       100 * s.recall(s.known_out, s.known_on), s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on),
-      s.unknown_on, 100 * s.recall(s.static_out, s.static_on), s.static_on);
+      s.unknown_on, 100 * s.recall(s.static_out, s.static_on), s.static_on,
+      100 * s.recall(s.still_out, s.still_on), s.still_on);
   return s;
 }
 
@@ -153,6 +158,23 @@ TEST(DynamicScenario, ThePapersVariantLosesFewerFramesInTheCrowdWithTheKeypointB
 TEST(DynamicScenario, TheStaticVariantFollowsTheCrowd) {
   const Score none = run("crowd", DynamicMode::kNone);
   EXPECT_GT(none.ate, 5.0 * kCrowdMaxAte) << "the static variant should be clearly worse";
+}
+
+// A person walks in, stands still for 3 s and walks on. The paper's variant (whole boxes, the paper's
+// keypoint spread) meets the bar here: 97.8 % of the person's keypoints and 5.7 % of the static ones
+// kept out when this was written. The default (geometric, with its keypoint budget) keeps the standing
+// person out too: a small residual does not count inside the person's region, so the box's word stands
+// (94.4 % of the standing person's keypoints kept out; 65.9 % when it counted, the probability worn down).
+TEST(DynamicScenario, APersonWhoStandsStillStaysKeptOut) {
+  const Score paper = run("person_stops", DynamicMode::kPaper);
+  EXPECT_GE(paper.recall(paper.known_out, paper.known_on), 0.95);
+  EXPECT_LE(paper.recall(paper.static_out, paper.static_on), 0.10);
+  EXPECT_EQ(paper.lost, 0);
+  const Score geometric =
+      run("person_stops", DynamicMode::kGeometric, TrackerConfig{}.dynamic.box_keypoint_share);
+  ASSERT_GT(geometric.still_on, 500) << "the scenario should show a person standing still";
+  EXPECT_GE(geometric.recall(geometric.still_out, geometric.still_on), 0.90);
+  expectPeopleKeptOut(geometric, 0.005);
 }
 
 // A textured box no detector knows pacing 2.4 m from the camera, over a quarter of the view: the pose must
