@@ -28,12 +28,6 @@ std::vector<Candidate> decodeRows(const cv::Mat& rows, ScoreLayout layout, float
   return out;
 }
 
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float overlap = (a & b).area();
-  const float sum = a.area() + b.area() - overlap;
-  return sum > 0.0f ? overlap / sum : 0.0f;
-}
-
 std::vector<Candidate> nmsPerClass(std::vector<Candidate> candidates, float iou_threshold,
                                    int max_detections) {
   std::stable_sort(candidates.begin(), candidates.end(),

@@ -4,6 +4,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "bmp/common/box_overlap.hpp"  // iou, for NMS
+
 namespace bmp::detector {
 
 struct Candidate {
@@ -22,8 +24,6 @@ enum class ScoreLayout {
 // Keeps, per row, the best class when its confidence reaches conf_threshold.
 std::vector<Candidate> decodeRows(const cv::Mat& rows, ScoreLayout layout, float coord_scale,
                                   float conf_threshold);
-
-float iou(const cv::Rect2f& a, const cv::Rect2f& b);
 
 // Greedy NMS within each class: highest score first, drops boxes overlapping a kept one of the same
 // class by more than iou_threshold. Returns at most max_detections, best first.

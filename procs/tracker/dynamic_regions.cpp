@@ -1,5 +1,7 @@
 #include "tracker/dynamic_regions.hpp"
 
+#include "bmp/common/box_overlap.hpp"
+
 namespace bmp::tracker {
 
 namespace {
@@ -84,10 +86,9 @@ std::vector<ObjectBox> movedForAge(std::vector<ObjectBox> newest, const std::vec
     double best = min_iou;
     for (const ObjectBox& e : before) {
       if (e.class_id != b.class_id) continue;
-      const double inter = (b.box & e.box).area();
-      const double uni = b.box.area() + e.box.area() - inter;
-      if (uni > 0 && inter / uni >= best) {
-        best = inter / uni;
+      const double overlap = iou(b.box, e.box);
+      if (overlap >= best) {
+        best = overlap;
         partner = &e;
       }
     }
