@@ -102,5 +102,20 @@ TEST(BenchTrackerScore, AnUnknownDynamicModeIsAnErrorNamingTheOption) {
   EXPECT_NE(o.output.find("--dynamic-mode"), std::string::npos) << o.output;
 }
 
+// --box-lag emulates late answers from the detector's boxes: without them, or out of range, it is an error
+// naming the option, not a run that silently ignores it.
+TEST(BenchTrackerScore, ABoxLagWithoutTheDetectorIsAnErrorNamingTheOption) {
+  const fs::path folder = writeScenario();
+  for (const std::vector<std::string>& extra : {std::vector<std::string>{"--box-lag", "2"},
+                                                std::vector<std::string>{"--detector", "--box-lag", "-1"}}) {
+    std::vector<std::string> command = {binPath("bmp-bench-tracker"), "--dataset", folder.string(),
+                                        "--frames", "5"};
+    command.insert(command.end(), extra.begin(), extra.end());
+    const Outcome o = runCommand("box_lag", command, kTimeoutS);
+    EXPECT_NE(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("--box-lag"), std::string::npos) << o.output;
+  }
+}
+
 }  // namespace
 }  // namespace bmp

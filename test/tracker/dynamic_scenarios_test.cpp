@@ -2,6 +2,7 @@
 // the tracker in reproducible mode (mapping inline), scored against the scene's per-mover masks.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "bmp/common/config.hpp"
 #include "detector/detector.hpp"
 #include "eval/ate.hpp"
+#include "tracker/stand_in_boxes.hpp"
 #include "tracker/tracker.hpp"
 
 namespace bmp::tracker {
@@ -60,9 +62,17 @@ void count(const TrackResult& r, const capture::SyntheticFrame& f, Score& s) {
   }
 }
 
+// Real time on a busy machine, reproducibly: every answer comes box_lag frames after its frame, so each
+// frame is observed with the stand-in bmp-tracker would use (the answer box_lag frames before, moved on for
+// its age when move_stand_ins) and takes its own answer late (applied to its keyframe, if it made one).
+struct Lag {
+  int frames = 0;  // 0: every frame its own answer, as in lockstep
+  bool move_stand_ins = true;
+};
+
 // box_keypoint_share 1: the keypoint budget spread as the paper's extractor spreads it, so that the shares
 // of keypoints kept out compare with the paper's (the default budget puts fewer keypoints on people).
-Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_share = 1.0) {
+Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_share = 1.0, Lag lag = {}) {
   capture::SyntheticSceneConfig sc = test::scenarioConfig(scenario);
   sc.num_frames = kFrames;
   const capture::SyntheticScene scene(sc);
@@ -71,7 +81,9 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
   config.mapping.threaded = false;  // reproducible
   config.dynamic.mode = mode;
   config.dynamic.box_keypoint_share = box_keypoint_share;
+  if (!lag.move_stand_ins) config.dynamic.stale_box_motion_iou = 0.0;
   Tracker tracker(scene.camera(), config);
+  std::vector<int64_t> utimes;
   Score s;
   Trajectory trajectory;
   for (int i = 0; i < kFrames; ++i) {
@@ -82,6 +94,16 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
     in.image = f.bgr;
     in.depth = f.depth;
     in.boxes = boxes[static_cast<std::size_t>(i)];
+    utimes.push_back(static_cast<int64_t>(std::llround(f.stamp * 1e6)));
+    if (lag.frames > 0) {
+      std::vector<FrameBoxes> before;
+      for (int j = i - lag.frames; j >= 0 && j >= i - lag.frames - 1; --j)
+        before.push_back(
+            FrameBoxes{utimes[static_cast<std::size_t>(j)], true, boxes[static_cast<std::size_t>(j)]});
+      in.boxes = standInBoxes(before, utimes.back(), config.dynamic);
+      if (i >= lag.frames)
+        tracker.applyLateBoxes(i - lag.frames, boxes[static_cast<std::size_t>(i - lag.frames)]);
+    }
     const TrackResult r = tracker.track(in);
     s.lost += r.state == TrackingState::kLost;
     if (i >= 30) count(r, f, s);  // after the first second: the probabilities need a few frames of history
@@ -89,12 +111,13 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
   tracker.finish();
   s.ate = eval::computeAte(scene.groundTruth(), tracker.trajectory()).stats.rmse;
   std::printf(
-      "%-14s %-9s share %.2f ATE %.2f mm, lost %d; kept out: people %.1f %% of %ld, unknown %.1f %% of %ld, "
-      "static %.1f %% of %ld; people standing still %.1f %% of %ld\n",
-      scenario.c_str(), toString(mode), box_keypoint_share, s.ate * 1000, s.lost,
-      100 * s.recall(s.known_out, s.known_on), s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on),
-      s.unknown_on, 100 * s.recall(s.static_out, s.static_on), s.static_on,
-      100 * s.recall(s.still_out, s.still_on), s.still_on);
+      "%-14s %-9s share %.2f lag %d%s ATE %.2f mm, lost %d; kept out: people %.1f %% of %ld, unknown %.1f %% "
+      "of %ld, static %.1f %% of %ld; people standing still %.1f %% of %ld\n",
+      scenario.c_str(), toString(mode), box_keypoint_share, lag.frames,
+      lag.move_stand_ins ? "" : " (unmoved)", s.ate * 1000, s.lost, 100 * s.recall(s.known_out, s.known_on),
+      s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on), s.unknown_on,
+      100 * s.recall(s.static_out, s.static_on), s.static_on, 100 * s.recall(s.still_out, s.still_on),
+      s.still_on);
   return s;
 }
 
@@ -175,6 +198,23 @@ TEST(DynamicScenario, APersonWhoStandsStillStaysKeptOut) {
   ASSERT_GT(geometric.still_on, 500) << "the scenario should show a person standing still";
   EXPECT_GE(geometric.recall(geometric.still_out, geometric.still_on), 0.90);
   expectPeopleKeptOut(geometric, 0.005);
+}
+
+// Real time: each answer 3 frames (0.1 s) late, every frame observed with a stand-in. The default still
+// keeps most of the people out, few static keypoints, and the trajectory within 5 mm; moving the stand-ins on
+// at the speed their boxes showed keeps more of the people out than leaving them where they were. When this
+// was written: people 79.8 % kept out (84.3 % with every answer on time), static 4.0 %, 3.7 mm; unmoved
+// 78.5 %, 5.5 %, 5.6 mm.
+TEST(DynamicScenario, PeopleAreKeptOutWhenEveryAnswerComesLate) {
+  const Score moved = run("people_walking", DynamicMode::kGeometric, 1.0, Lag{3, true});
+  EXPECT_GE(moved.recall(moved.known_out, moved.known_on), 0.75);
+  EXPECT_LE(moved.recall(moved.static_out, moved.static_on), 0.05);
+  EXPECT_LT(moved.ate, 0.005);
+  EXPECT_EQ(moved.lost, 0);
+  const Score unmoved = run("people_walking", DynamicMode::kGeometric, 1.0, Lag{3, false});
+  EXPECT_GT(moved.recall(moved.known_out, moved.known_on),
+            unmoved.recall(unmoved.known_out, unmoved.known_on))
+      << "moving stand-ins on should keep more of the people out";
 }
 
 // A textured box no detector knows pacing 2.4 m from the camera, over a quarter of the view: the pose must

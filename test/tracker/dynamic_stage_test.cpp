@@ -3,6 +3,7 @@
 
 #include "tracker/dynamic_regions.hpp"
 #include "tracker/moving_probability.hpp"
+#include "tracker/stand_in_boxes.hpp"
 
 namespace bmp::tracker {
 namespace {
@@ -123,6 +124,32 @@ TEST(DynamicRegions, StaleBoxesMoveOnAtTheSpeedTheyShowed) {
   const std::vector<ObjectBox> far = {box(400, 100, 80, 200, DynamicLevel::kHigh)};
   EXPECT_EQ(movedForAge(newest, far, 0.1, 0.05, 0.3)[0].box, newest[0].box);
   EXPECT_EQ(movedForAge(newest, before, 0.0, 0.05, 0.3)[0].box, newest[0].box) << "no speed from no time";
+}
+
+// The whole stand-in rule, as bmp-tracker and bmp-bench-tracker --box-lag apply it: the newest answer, moved
+// on at the speed shown since the one before (when that one is recent), grown for its age; none when there
+// is no answer or the newest is older than stale_box_max_age_s.
+TEST(DynamicRegions, StandInBoxesFollowTheRealTimeRule) {
+  DynamicOptions options;
+  options.stale_box_max_age_s = 0.5;
+  options.stale_box_motion_iou = 0.3;
+  options.stale_box_growth_px_per_s = 100.0;
+  const FrameBoxes older{1'000'000, true, {box(80, 100, 80, 200, DynamicLevel::kHigh)}};
+  const FrameBoxes newest{1'100'000, true, {box(100, 100, 80, 200, DynamicLevel::kHigh)}};
+  EXPECT_FALSE(standInBoxes({}, 1'150'000, options)) << "no answer yet: priors only";
+  EXPECT_FALSE(standInBoxes({newest, older}, 1'700'000, options)) << "0.6 s old: too old";
+  EXPECT_FALSE(standInBoxes({newest, older}, 1'100'000, options)) << "no age: not a stand-in";
+  // 0.05 s after the newest: 10 px on at 200 px/s, and 5 px grown on every side.
+  const auto moved = standInBoxes({newest, older}, 1'150'000, options);
+  ASSERT_TRUE(moved);
+  EXPECT_FLOAT_EQ((*moved)[0].box.x, 105.0f);
+  EXPECT_FLOAT_EQ((*moved)[0].box.width, 90.0f);
+  // Only one answer, or the one before too long before: grown where it was, not moved.
+  EXPECT_FLOAT_EQ((*standInBoxes({newest}, 1'150'000, options))[0].box.x, 95.0f);
+  const FrameBoxes long_before{500'000, true, older.boxes};
+  EXPECT_FLOAT_EQ((*standInBoxes({newest, long_before}, 1'150'000, options))[0].box.x, 95.0f);
+  options.stale_box_motion_iou = 0.0;
+  EXPECT_FLOAT_EQ((*standInBoxes({newest, older}, 1'150'000, options))[0].box.x, 95.0f) << "motion off";
 }
 
 }  // namespace

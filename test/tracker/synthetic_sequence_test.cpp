@@ -24,7 +24,7 @@ FrameProvider sceneFrames(std::shared_ptr<const capture::SyntheticScene> scene) 
   return [scene, next]() -> std::optional<OfflineFrame> {
     if (*next >= scene->numFrames()) return std::nullopt;
     const capture::SyntheticFrame f = scene->render((*next)++);
-    return OfflineFrame{f.stamp, f.bgr, f.depth, cv::Mat(), std::nullopt};
+    return OfflineFrame{f.stamp, f.bgr, f.depth, cv::Mat(), std::nullopt, std::nullopt};
   };
 }
 

@@ -1,6 +1,7 @@
 #include "bench_run.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "detector/detector.hpp"
 #include "detector/detector_settings.hpp"
 #include "eval/ate.hpp"
+#include "tracker/stand_in_boxes.hpp"
 #include "tracker/tracker_settings.hpp"
 #include "tracker_offline/keypoint_score.hpp"
 #include "tracker_offline/offline_runner.hpp"
@@ -156,13 +158,34 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start,
   return all;
 }
 
+// --box-lag K: frame i is observed with frame i-K's answer standing in for its own (moved on for its age
+// with frame i-K-1's, by bmp-tracker's real-time rule), and frame i-K's answer comes late with frame i.
+void lagBoxes(OfflineFrame& frame, std::size_t i, std::size_t lag,
+              const std::vector<std::vector<ObjectBox>>& all, const std::vector<double>& stamps,
+              const DynamicOptions& dynamic) {
+  if (lag == 0 || i >= all.size()) return;
+  const auto utime = [](double stamp) { return static_cast<int64_t>(std::llround(stamp * 1e6)); };
+  std::vector<FrameBoxes> before;
+  for (std::size_t back = lag; back <= lag + 1 && back <= i; ++back)
+    before.push_back(FrameBoxes{utime(stamps[i - back]), true, all[i - back]});
+  frame.boxes = standInBoxes(before, utime(frame.stamp), dynamic);
+  if (i >= lag) frame.late = OfflineFrame::LateBoxes{static_cast<int>(lag), all[i - lag]};
+}
+
 // detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
-PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect) {
+PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect,
+                          const DynamicOptions& dynamic) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
   const bool masks = args.flag("oracle-masks") || args.flag("score-masks");
   const long long passes = args.integer("passes");
   if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
+  const long long lag = args.integer("box-lag");
+  // 15 frames is 0.5 s at 30 Hz: the oldest a stand-in may be (stale_box_max_age_s) and as long as a keyframe
+  // is held for its late boxes (keyframe_hold_ms).
+  if (lag < 0 || lag > 15) throw bmp::ArgError("--box-lag must be between 0 and 15 frames");
+  if (lag > 0 && !detect)
+    throw bmp::ArgError("--box-lag needs --detector and a dynamic mode other than none");
   PassedFrames out;
   bmp::Trajectory one_pass;
   FrameProvider first = tumFolderFrames(dir, start, &one_pass, masks);
@@ -181,6 +204,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
     }
   auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
       detect ? detectAll(dir, start, maxFrames(args)) : std::vector<std::vector<ObjectBox>>{});
+  auto stamps = std::make_shared<std::vector<double>>();
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
   auto in_pass = std::make_shared<std::size_t>(0);
@@ -189,6 +213,9 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       if (auto frame = (*current)()) {
         frame->stamp += static_cast<double>(*pass) * period;
         if (*in_pass < boxes->size()) frame->boxes = (*boxes)[*in_pass];
+        stamps->resize(*in_pass + 1);
+        (*stamps)[*in_pass] = frame->stamp;
+        lagBoxes(*frame, *in_pass, static_cast<std::size_t>(lag), *boxes, *stamps, dynamic);
         ++*in_pass;
         return frame;
       }
@@ -215,8 +242,8 @@ int runBenchTracker(const bmp::ArgParser& args) {
   const TrackerConfig config = loadConfig(args);
   Tracker tracker(selected.intrinsics, config);
   auto last = std::make_shared<TrackResult>();
-  const PassedFrames input =
-      passedFrames(args, last, args.flag("detector") && config.dynamic.mode != DynamicMode::kNone);
+  const PassedFrames input = passedFrames(
+      args, last, args.flag("detector") && config.dynamic.mode != DynamicMode::kNone, config.dynamic);
   OfflineOptions options = offlineOptions(args);
   auto times = std::make_shared<FrameTimes>();
   auto scored = std::make_shared<MaskScore>();
@@ -275,6 +302,13 @@ void addBenchTrackerOptions(ArgParser& args) {
   args.addFlag("detector",
                "give the tracker the detector's boxes (config/detector.yaml), found for every frame before "
                "tracking starts (untimed): the dynamic stage at work, as in a lockstep run");
+  args.addOption(
+      "box-lag", "K",
+      "with --detector: each frame's own answer comes K frames late, as in real time on a busy "
+      "machine; the frame is observed with the answer of the frame K before it, moved on for its age "
+      "(bmp-tracker's real-time rule), and its own is applied late to its keyframe (0: every frame "
+      "its own, as in lockstep)",
+      "0");
   args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("score-masks",

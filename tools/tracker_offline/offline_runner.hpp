@@ -20,6 +20,13 @@ struct OfflineFrame {
   cv::Mat depth;                                // CV_16UC1 or CV_32FC1 metres
   cv::Mat mover_mask;                           // optional CV_8UC1: nonzero on things that move (the truth)
   std::optional<std::vector<ObjectBox>> boxes;  // the detector's, when known (the dynamic stage's input)
+  // An answer that comes with this frame for the frame `frames_back` before it (real time: boxes that
+  // arrive after their frame was tracked), applied to the keyframe that frame made, if it made one.
+  struct LateBoxes {
+    int frames_back = 1;
+    std::vector<ObjectBox> boxes;
+  };
+  std::optional<LateBoxes> late;
 };
 // Returns the next frame, or nullopt at the end.
 using FrameProvider = std::function<std::optional<OfflineFrame>()>;

@@ -7,6 +7,7 @@
 #include "bmp/lcm/conversions.hpp"
 #include "detector/lcm/detections_message.hpp"
 #include "tracker/lcm/tracker_messages.hpp"
+#include "tracker/stand_in_boxes.hpp"
 
 namespace bmp::tracker {
 
@@ -109,21 +110,12 @@ TrackerNode::FrameBoxChoice TrackerNode::boxesFor(const rgbd_frame_t& msg) {
   if (got && got->usable) return {std::move(got->boxes), true};
   if (got || wait) return {};  // the detector skipped it, or lockstep: no stand-in
   // Real time, the answer not here yet: the newest answer before it stands in, moved on for its age.
-  const DynamicOptions& d = config_.dynamic;
-  std::vector<FrameBoxes> before =
-      book_.newestBefore(msg.seq, msg.seq - static_cast<int64_t>(book_.capacity()), 2);
-  if (before.empty()) return {};
-  const double age_s = static_cast<double>(msg.utime - before[0].utime) * 1e-6;
-  if (age_s <= 0.0 || age_s > d.stale_box_max_age_s) return {};
+  std::optional<std::vector<ObjectBox>> stand_in =
+      standInBoxes(book_.newestBefore(msg.seq, msg.seq - static_cast<int64_t>(book_.capacity()), 2),
+                   msg.utime, config_.dynamic);
+  if (!stand_in) return {};
   ++stale_boxes_used_;
-  std::vector<ObjectBox> boxes = std::move(before[0].boxes);
-  if (before.size() == 2 && d.stale_box_motion_iou > 0.0) {
-    // A speed measured over a long gap says little about now: only answers as close as the age limit.
-    const double dt_s = static_cast<double>(before[0].utime - before[1].utime) * 1e-6;
-    if (dt_s <= d.stale_box_max_age_s)
-      boxes = movedForAge(std::move(boxes), before[1].boxes, dt_s, age_s, d.stale_box_motion_iou);
-  }
-  return {grownForAge(std::move(boxes), age_s, d.stale_box_growth_px_per_s), false};
+  return {std::move(stand_in), false};
 }
 
 void TrackerNode::releaseHeldKeyframes(bool all) {
