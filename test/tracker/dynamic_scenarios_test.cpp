@@ -2,7 +2,6 @@
 // the tracker in reproducible mode (mapping inline), scored against the scene's per-mover masks.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -83,7 +82,7 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
   config.dynamic.box_keypoint_share = box_keypoint_share;
   if (!lag.move_stand_ins) config.dynamic.stale_box_motion_iou = 0.0;
   Tracker tracker(scene.camera(), config);
-  std::vector<int64_t> utimes;
+  std::vector<double> stamps;
   Score s;
   Trajectory trajectory;
   for (int i = 0; i < kFrames; ++i) {
@@ -94,15 +93,11 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
     in.image = f.bgr;
     in.depth = f.depth;
     in.boxes = boxes[static_cast<std::size_t>(i)];
-    utimes.push_back(static_cast<int64_t>(std::llround(f.stamp * 1e6)));
+    stamps.push_back(f.stamp);
     if (lag.frames > 0) {
-      std::vector<FrameBoxes> before;
-      for (int j = i - lag.frames; j >= 0 && j >= i - lag.frames - 1; --j)
-        before.push_back(
-            FrameBoxes{utimes[static_cast<std::size_t>(j)], true, boxes[static_cast<std::size_t>(j)]});
-      in.boxes = standInBoxes(before, utimes.back(), config.dynamic);
-      if (i >= lag.frames)
-        tracker.applyLateBoxes(i - lag.frames, boxes[static_cast<std::size_t>(i - lag.frames)]);
+      const auto at = static_cast<std::size_t>(i), back = static_cast<std::size_t>(lag.frames);
+      in.boxes = laggedStandIn(boxes, stamps, at, back, config.dynamic);
+      if (at >= back) tracker.applyLateBoxes(i - lag.frames, boxes[at - back]);
     }
     const TrackResult r = tracker.track(in);
     s.lost += r.state == TrackingState::kLost;

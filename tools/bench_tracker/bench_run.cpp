@@ -1,7 +1,6 @@
 #include "bench_run.hpp"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -164,11 +163,7 @@ void lagBoxes(OfflineFrame& frame, std::size_t i, std::size_t lag,
               const std::vector<std::vector<ObjectBox>>& all, const std::vector<double>& stamps,
               const DynamicOptions& dynamic) {
   if (lag == 0 || i >= all.size()) return;
-  const auto utime = [](double stamp) { return static_cast<int64_t>(std::llround(stamp * 1e6)); };
-  std::vector<FrameBoxes> before;
-  for (std::size_t back = lag; back <= lag + 1 && back <= i; ++back)
-    before.push_back(FrameBoxes{utime(stamps[i - back]), true, all[i - back]});
-  frame.boxes = standInBoxes(before, utime(frame.stamp), dynamic);
+  frame.boxes = laggedStandIn(all, stamps, i, lag, dynamic);
   if (i >= lag) frame.late = OfflineFrame::LateBoxes{static_cast<int>(lag), all[i - lag]};
 }
 
