@@ -20,6 +20,7 @@
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/image_codec.hpp"
+#include "bmp/common/stamp.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "file_image.hpp"
@@ -63,7 +64,7 @@ std::vector<BonnFrame> bonnFrames(std::size_t first, std::size_t n) {
 rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
   rgbd_frame_t msg;
   msg.seq = seq;
-  msg.utime = static_cast<int64_t>(std::llround(frame.stamp * 1e6));
+  msg.utime = secondsToUtime(frame.stamp);
   msg.depth_utime = msg.utime;
   msg.source = "rgbd_bonn_crowd";
   // The frame contract asks for the camera; the detector refuses frames without usable intrinsics.

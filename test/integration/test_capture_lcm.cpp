@@ -14,6 +14,7 @@
 #include <bmp/slam_pose_t.hpp>
 
 #include "bmp/common/child_process.hpp"
+#include "bmp/common/stamp.hpp"
 #include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/lcm/frame_message.hpp"
@@ -65,8 +66,8 @@ void expectEveryFrame(const Played& played) {
   for (std::size_t i = 0; i < played.frames.size(); ++i) {
     const auto& f = played.frames[i];
     ASSERT_EQ(f.seq, static_cast<long long>(i));
-    EXPECT_EQ(f.utime, capture::secondsToUtime(index.frames[i].rgb_stamp));
-    EXPECT_EQ(f.depth_utime, capture::secondsToUtime(index.frames[i].depth_stamp));
+    EXPECT_EQ(f.utime, secondsToUtime(index.frames[i].rgb_stamp));
+    EXPECT_EQ(f.depth_utime, secondsToUtime(index.frames[i].depth_stamp));
     EXPECT_EQ(f.color_bytes, static_cast<long long>(fs::file_size(index.frames[i].rgb_path)));
     EXPECT_EQ(f.decoded, 1);
   }

@@ -22,6 +22,7 @@
 
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/image_codec.hpp"
+#include "bmp/common/stamp.hpp"
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
@@ -95,8 +96,8 @@ class TrackerUnderTest {
     const auto& pair = index_.frames[i];
     rgbd_frame_t msg;
     msg.seq = i;
-    msg.utime = static_cast<int64_t>(pair.rgb_stamp * 1e6 + 0.5);
-    msg.depth_utime = static_cast<int64_t>(pair.depth_stamp * 1e6 + 0.5);
+    msg.utime = secondsToUtime(pair.rgb_stamp);
+    msg.depth_utime = secondsToUtime(pair.depth_stamp);
     msg.source = "rgbd_bonn_crowd";
     msg.camera = bonnCamera();
     msg.depth_scale = 5000.0;

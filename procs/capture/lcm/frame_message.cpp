@@ -1,7 +1,6 @@
 #include "capture/lcm/frame_message.hpp"
 
-#include <cmath>
-
+#include "bmp/common/stamp.hpp"
 #include "bmp/lcm/conversions.hpp"
 
 namespace bmp::capture {

@@ -1,7 +1,5 @@
 #pragma once
 // A captured frame as the RGBD_FRAME message (shared by bmp-capture and tum2lcm).
-#include <cmath>
-
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "capture/frame_source.hpp"
@@ -11,9 +9,5 @@ namespace bmp::capture {
 // Moves the image bytes into the message; frame is left without them.
 rgbd_frame_t toFrameMessage(CapturedFrame&& frame, int64_t seq, const CameraIntrinsics& camera,
                             const std::string& source);
-
-inline int64_t secondsToUtime(double seconds) {
-  return static_cast<int64_t>(std::llround(seconds * 1e6));
-}
 
 }  // namespace bmp::capture

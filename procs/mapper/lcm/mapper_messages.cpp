@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bmp/common/image_codec.hpp"
+#include "bmp/common/stamp.hpp"
 #include "bmp/lcm/conversions.hpp"
 
 namespace bmp::mapper {
@@ -26,7 +27,7 @@ std::string checkPoseMessage(const pose_t& pose) {
 
 std::string keyframeFromMessage(const keyframe_t& msg, KeyframeInput& out) {
   out.id = msg.id;
-  out.stamp = static_cast<double>(msg.utime) * 1e-6;
+  out.stamp = utimeToSeconds(msg.utime);
   out.T_world_cam = fromMsg(msg.T_world_cam);
   if (std::string why = checkPoseMessage(msg.T_world_cam); !why.empty()) return why;
   out.camera = fromMsg(msg.camera, msg.depth_scale);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "bmp/common/log.hpp"
+#include "bmp/common/stamp.hpp"
 #include "bmp/lcm/conversions.hpp"
 #include "detector/lcm/detections_message.hpp"
 #include "tracker/lcm/tracker_messages.hpp"
@@ -225,7 +226,7 @@ void TrackerNode::process(const Queued& frame) {
     log::info("camera ", camera.width, "x", camera.height, " fx ", camera.fx, " from ", msg.source);
   }
   TrackerInput input;
-  input.stamp = static_cast<double>(msg.utime) * 1e-6;
+  input.stamp = utimeToSeconds(msg.utime);
   input.seq = msg.seq;
   input.image = color;
   input.depth = depth;
