@@ -196,7 +196,17 @@ bool Tracker::needNewKeyFrame(const Frame& frame) const {
   const bool c1b = since >= k.min_frames && mapper_->idle();
   const bool c1c = inliers < 0.25 * ref_matches || need_close;
   const bool c2 = (inliers < ratio * ref_matches || need_close) && inliers > 15;
-  return (c1a || c1b || c1c) && c2 && !(inliers >= k.revisit_min_inliers && placeIsMapped(frame));
+  if (!((c1a || c1b || c1c) && c2)) return false;
+  if (inliers >= k.still_min_inliers && atRestOnReference(frame)) return false;
+  return !(inliers >= k.revisit_min_inliers && placeIsMapped(frame));
+}
+
+bool Tracker::atRestOnReference(const Frame& frame) const {
+  const auto& k = config_.keyframes;
+  if (k.still_distance_m <= 0.0 || !reference_kf_) return false;
+  const SE3 moved = reference_kf_->T_world_cam().inverse() * frame.T_world_cam();
+  return moved.translation().norm() < k.still_distance_m &&
+         Eigen::AngleAxisd(moved.linear()).angle() < k.still_angle_deg * M_PI / 180.0;
 }
 
 bool Tracker::placeIsMapped(const Frame& frame) const {

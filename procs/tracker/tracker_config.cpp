@@ -136,6 +136,10 @@ KeyframeOptions keyframeOptions(const Config& c) {
   c.check(o.revisit_angle_deg <= 180.0, "revisit_angle_deg", "must be at most 180");
   readAtLeast(c, "revisit_min_inliers", o.revisit_min_inliers, 0);
   readAtLeast(c, "revisit_min_age_s", o.revisit_min_age_s, 0.0);
+  readAtLeast(c, "still_distance_m", o.still_distance_m, 0.0);
+  readAtLeast(c, "still_angle_deg", o.still_angle_deg, 0.0);
+  c.check(o.still_angle_deg <= 180.0, "still_angle_deg", "must be at most 180");
+  readAtLeast(c, "still_min_inliers", o.still_min_inliers, 0);
   return o;
 }
 

@@ -87,6 +87,14 @@ struct KeyframeOptions {
   double revisit_angle_deg = 10.0;
   int revisit_min_inliers = 50;
   double revisit_min_age_s = 10.0;
+  // A camera at rest gets no new keyframe: none while the frame is within this distance and angle of its
+  // reference keyframe and still tracks this many inliers. From where the last keyframe stands, another adds
+  // no baseline, only the movers in front of it; when people cover the view a keyframe was made on nearly
+  // every frame, and local BA over near-identical keyframes let the resting camera's pose jump by
+  // centimetres. 0 distance: off.
+  double still_distance_m = 0.01;
+  double still_angle_deg = 0.5;
+  int still_min_inliers = 100;
 };
 
 struct MappingOptions {

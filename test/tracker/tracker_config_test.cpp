@@ -94,6 +94,9 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("keyframes.revisit_angle_deg", k.revisit_angle_deg);
   put("keyframes.revisit_min_inliers", k.revisit_min_inliers);
   put("keyframes.revisit_min_age_s", k.revisit_min_age_s);
+  put("keyframes.still_distance_m", k.still_distance_m);
+  put("keyframes.still_angle_deg", k.still_angle_deg);
+  put("keyframes.still_min_inliers", k.still_min_inliers);
   const MappingOptions& m = c.mapping;
   put("mapping.threaded", m.threaded);
   put("mapping.queue_capacity", m.queue_capacity);
