@@ -70,11 +70,11 @@ struct Lag {
   bool move_stand_ins = true;
 };
 
-// box_keypoint_share 1: the keypoint budget spread as the paper's extractor spreads it, so that the shares
-// of keypoints kept out compare with the paper's (the default budget puts fewer keypoints on people).
 // What a test changes in the scene or the tracker beyond the variant (none by default).
 using Adjust = std::function<void(capture::SyntheticSceneConfig&, TrackerConfig&)>;
 
+// box_keypoint_share 1: the keypoint budget spread as the paper's extractor spreads it, so that the shares
+// of keypoints kept out compare with the paper's (the default budget puts fewer keypoints on people).
 Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_share = 1.0, Lag lag = {},
           const Adjust& adjust = {}) {
   capture::SyntheticSceneConfig sc = test::scenarioConfig(scenario);
