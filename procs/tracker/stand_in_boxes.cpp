@@ -1,6 +1,6 @@
 #include "tracker/stand_in_boxes.hpp"
 
-#include <bmp/common/stamp.hpp>
+#include "bmp/common/stamp.hpp"
 
 namespace bmp::tracker {
 

@@ -110,6 +110,7 @@ class Tracker {
   bool needNewKeyFrame(const Frame& frame) const;
   // A keyframe of the local map already sees from about where the frame is (keyframes.revisit_*).
   bool placeIsMapped(const Frame& frame) const;
+  // The frame is about where its reference keyframe was taken (keyframes.still_*).
   bool atRestOnReference(const Frame& frame) const;
   void insertKeyFrame(Frame& frame, TrackResult& result);
   void prepareLastFrame();
