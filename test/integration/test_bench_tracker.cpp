@@ -117,5 +117,41 @@ TEST(BenchTrackerScore, ABoxLagWithoutTheDetectorIsAnErrorNamingTheOption) {
   }
 }
 
+// --drop-bursts drops frames as a real-time tracker that falls behind does, on the real Bonn frames: every
+// frame is either tracked or counted dropped, the same seed drops the same frames (a rare real-time failure
+// becomes one that can be run again), and the tracker keeps tracking across the gaps.
+TEST(BenchTrackerDrops, TheSameSeedDropsTheSameFramesAndTrackingGoesOn) {
+  constexpr int kFrames = 120;
+  const auto run = [](const std::string& seed) {
+    return runCommand(
+        "drops_" + seed,
+        {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--frames", std::to_string(kFrames),
+         "--inline-mapping", "--drop-bursts", "0.15", "--drop-seed", seed},
+        kTimeoutS);
+  };
+  const Outcome a = run("3");
+  ASSERT_EQ(a.status, 0) << a.output;
+  const double dropped = figure(a.output, "frames dropped");
+  EXPECT_GT(dropped, 0.0) << a.output;
+  EXPECT_EQ(figure(a.output, "frames") + dropped, kFrames) << a.output;
+  EXPECT_EQ(figure(a.output, "frames lost"), 0.0) << a.output;
+  EXPECT_LT(figure(a.output, "ATE max m"), 0.10) << a.output;
+  const Outcome again = run("3");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(figure(again.output, "frames dropped"), dropped) << again.output;
+  EXPECT_EQ(figure(again.output, "ATE rmse m"), figure(a.output, "ATE rmse m")) << again.output;
+}
+
+TEST(BenchTrackerDrops, AProbabilityOutOfRangeIsAnErrorNamingTheOption) {
+  for (const char* p : {"1", "-0.1", "often"}) {
+    const Outcome o = runCommand(
+        "drop_range",
+        {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--frames", "5", "--drop-bursts", p},
+        kTimeoutS);
+    EXPECT_NE(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("--drop-bursts"), std::string::npos) << o.output;
+  }
+}
+
 }  // namespace
 }  // namespace bmp

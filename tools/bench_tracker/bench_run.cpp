@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <thread>
 
@@ -92,8 +93,9 @@ void printMaskScore(const MaskScore& s) {
               s.score.inPose() > 0 ? static_cast<double>(s.score.moversInPose()) / s.score.inPose() : 0.0);
 }
 
-void printRunSummary(const OfflineResult& result, const FrameTimes& times) {
+void printRunSummary(const OfflineResult& result, const FrameTimes& times, long long dropped) {
   std::printf("frames           %d\n", result.frames);
+  if (dropped > 0) std::printf("frames dropped   %lld (--drop-bursts, not given to the tracker)\n", dropped);
   std::printf("frames tracked   %zu\n", result.trajectory.size());
   std::printf("frames lost      %d%s\n", result.frames_lost, result.lost_at_end ? " (lost at the end)" : "");
   std::printf("keyframes        %zu\n", result.keyframe_trajectory.size());
@@ -136,6 +138,7 @@ void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
 struct PassedFrames {
   FrameProvider frames;
   bmp::Trajectory groundtruth;
+  std::shared_ptr<long long> dropped = std::make_shared<long long>(0);  // by --drop-bursts
 };
 
 // --detector: the detector (config/detector.yaml) over every frame of one pass (at most max_frames, < 0:
@@ -167,6 +170,32 @@ void lagBoxes(OfflineFrame& frame, std::size_t i, std::size_t lag,
   if (i >= lag) frame.late = OfflineFrame::LateBoxes{static_cast<int>(lag), all[i - lag]};
 }
 
+// --drop-bursts P: a real-time tracker that falls behind drops frames, several at a time (its queue's oldest
+// give way). Each frame from the second second on starts a burst of 1 to 4 dropped frames with probability P,
+// drawn from --drop-seed: the same seed drops the same frames.
+class DropBursts {
+ public:
+  DropBursts(double probability, unsigned seed) : probability_(probability), rng_(seed) {}
+  // Whether frame i (index in the pass) is dropped.
+  bool drop(std::size_t i) {
+    if (left_ > 0) {
+      --left_;
+      return true;
+    }
+    if (probability_ <= 0.0 || i < kFirstFrame) return false;
+    if (std::uniform_real_distribution<double>(0.0, 1.0)(rng_) >= probability_) return false;
+    left_ = std::uniform_int_distribution<int>(0, kMaxBurst - 1)(rng_);
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kFirstFrame = 30;  // the map's first second is left alone
+  static constexpr int kMaxBurst = 4;
+  double probability_;
+  std::mt19937 rng_;
+  int left_ = 0;
+};
+
 // detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
 PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect,
                           const DynamicOptions& dynamic) {
@@ -181,6 +210,10 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
   if (lag < 0 || lag > 15) throw bmp::ArgError("--box-lag must be between 0 and 15 frames");
   if (lag > 0 && !detect)
     throw bmp::ArgError("--box-lag needs --detector and a dynamic mode other than none");
+  const double drop_p = args.number("drop-bursts");
+  if (!(drop_p >= 0.0 && drop_p < 1.0)) throw bmp::ArgError("--drop-bursts must be at least 0 and below 1");
+  const long long drop_seed = args.integer("drop-seed");
+  if (drop_seed < 0) throw bmp::ArgError("--drop-seed must not be negative");
   PassedFrames out;
   bmp::Trajectory one_pass;
   FrameProvider first = tumFolderFrames(dir, start, &one_pass, masks);
@@ -203,15 +236,33 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
   auto in_pass = std::make_shared<std::size_t>(0);
+  auto drops = std::make_shared<DropBursts>(drop_p, static_cast<unsigned>(drop_seed));
+  // The index of the last frame dropped (one past it; 0: none yet).
+  auto last_drop = std::make_shared<std::size_t>(0);
+  auto dropped = out.dropped;
+  // --frames N counts the folder's frames, dropped or not (the detector answered that many).
+  const int max_frames = maxFrames(args);
+  auto given = std::make_shared<long long>(0);
   out.frames = [=]() -> std::optional<OfflineFrame> {
     for (;;) {
+      if (max_frames >= 0 && *given >= max_frames) return std::nullopt;
       if (auto frame = (*current)()) {
+        ++*given;
         frame->stamp += static_cast<double>(*pass) * period;
         if (*in_pass < boxes->size()) frame->boxes = (*boxes)[*in_pass];
         stamps->resize(*in_pass + 1);
         (*stamps)[*in_pass] = frame->stamp;
         lagBoxes(*frame, *in_pass, static_cast<std::size_t>(lag), *boxes, *stamps, dynamic);
-        ++*in_pass;
+        const std::size_t i = (*in_pass)++;
+        if (drops->drop(i)) {
+          *last_drop = i + 1;
+          ++*dropped;
+          continue;
+        }
+        // A late answer names its frame by how many frames back it is: with a drop in between that count
+        // is not the tracker's, and the answer belonged to a frame the tracker never saw.
+        if (frame->late && *last_drop > 0 && i - (*last_drop - 1) <= static_cast<std::size_t>(lag))
+          frame->late.reset();
         return frame;
       }
       *in_pass = 0;
@@ -270,7 +321,7 @@ int runBenchTracker(const bmp::ArgParser& args) {
   if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
   if (args.given("keyframe-trajectory"))
     bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
-  printRunSummary(result, *times);
+  printRunSummary(result, *times, *input.dropped);
   printAte(args, result.trajectory, groundtruth);
   if (score) printMaskScore(*scored);
   return 0;
@@ -304,6 +355,11 @@ void addBenchTrackerOptions(ArgParser& args) {
       "(bmp-tracker's real-time rule), and its own is applied late to its keyframe (0: every frame "
       "its own, as in lockstep)",
       "0");
+  args.addOption("drop-bursts", "P",
+                 "drop frames as a real-time tracker that falls behind does: from 1 s on, each frame starts "
+                 "a burst of 1 to 4 dropped frames with probability P (0: none)",
+                 "0");
+  args.addOption("drop-seed", "N", "with --drop-bursts: the seed that chooses the dropped frames", "1");
   args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("score-masks",
