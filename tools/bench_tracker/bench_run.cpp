@@ -266,6 +266,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
         return frame;
       }
       *in_pass = 0;
+      *last_drop = 0;  // indices start again with the pass
       if (passes > 1)
         std::printf("pass %4lld  keyframes %5d  map points %7d  resident %.1f MiB\n", *pass + 1,
                     last->num_keyframes, last->num_map_points,
