@@ -64,7 +64,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
         tracked = relocalise(frame) && trackLocalMap(frame);
         if (tracked) last_reloc_seq_ = frame.seq;
       } else {
-        tracked = (trackWithMotionModel(frame) || trackReferenceKeyFrame(frame)) && trackLocalMap(frame);
+        tracked = trackFromLastFrame(frame, result.gap_recheck) && trackLocalMap(frame);
       }
       if (tracked) {
         state_ = last_reloc_seq_ == frame.seq ? TrackingState::kRelocalised : TrackingState::kOk;

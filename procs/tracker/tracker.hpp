@@ -36,6 +36,10 @@ struct TrackerInput {
   std::optional<std::vector<ObjectBox>> boxes;
 };
 
+// After a gap, whether the motion model's pose was checked against the reference keyframe's
+// (tracking.recheck_*) and which was kept.
+enum class GapRecheck : uint8_t { kNone, kMotionKept, kReferenceTaken };
+
 struct TrackResult {
   double stamp = 0.0;
   int64_t seq = 0;
@@ -60,6 +64,7 @@ struct TrackResult {
   // Whether each keypoint was a pose inlier (matched to a map point, not an outlier, not dynamic): a mover's
   // keypoint that is one pulls the camera along with it.
   std::vector<uint8_t> keypoint_in_pose;
+  GapRecheck gap_recheck = GapRecheck::kNone;
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
   double dynamic_ms = 0.0;     // the dynamic stage: observations, priors, geometric test, keyframe mask
@@ -102,6 +107,9 @@ class Tracker {
   // Priors and box observation into the frame's moving probabilities, then the pose without the
   // dynamic keypoints.
   void optimizePose(Frame& frame);
+  // The motion model, else the reference keyframe; after a gap, the better of the two
+  // (tracking.recheck_*).
+  bool trackFromLastFrame(Frame& frame, GapRecheck& recheck);
   bool trackWithMotionModel(Frame& frame);
   bool trackReferenceKeyFrame(Frame& frame);
   bool relocalise(Frame& frame);

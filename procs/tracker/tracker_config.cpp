@@ -85,6 +85,8 @@ TrackingOptions trackingOptions(const Config& c) {
   readAtLeast(c, "min_inliers_after_reloc", o.min_inliers_after_reloc, 0);
   readAtLeast(c, "max_local_keyframes", o.max_local_keyframes, 1);
   readAtLeast(c, "temporal_points", o.temporal_points, 0);
+  readPositive(c, "recheck_gap_s", o.recheck_gap_s);
+  readFraction(c, "recheck_inlier_ratio", o.recheck_inlier_ratio);
   return o;
 }
 

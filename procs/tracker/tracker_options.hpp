@@ -35,6 +35,11 @@ struct TrackingOptions {
   int min_inliers_after_reloc = 50;      // same, in the frames just after relocalisation
   int max_local_keyframes = 60;          // size cap of the local map
   int temporal_points = 0;               // nearest depth points made temporary in the last frame (0: off)
+  // A frame more than recheck_gap_s after the last (frames were dropped) whose motion-model pose keeps under
+  // recheck_inlier_ratio of the last frame's tracked points is also tracked from the reference keyframe,
+  // and the pose with more inliers kept (ratio 0: off).
+  double recheck_gap_s = 0.05;
+  double recheck_inlier_ratio = 0.5;
 };
 
 // Projection search (matcher.cpp): which map points are worth looking for in a view, and how wide to look.

@@ -87,6 +87,34 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   return ok;
 }
 
+// After a gap (frames dropped by a tracker that fell behind) the constant-velocity guess can be far off in a
+// fast turn and still keep a few matches, enough to pass: a wrong pose that the local map then follows and a
+// keyframe makes permanent. So when it keeps under recheck_inlier_ratio of the last frame's tracked points,
+// the reference keyframe's descriptor matches, which need no guess, are tried too. If they keep more inliers,
+// their pose is the guess the motion model lacked: the last frame's points are searched again around it
+// (descriptor matches alone are fewer and less precise), and the better of the two is kept.
+bool Tracker::trackFromLastFrame(Frame& frame, GapRecheck& recheck) {
+  if (!trackWithMotionModel(frame)) return trackReferenceKeyFrame(frame);
+  const auto& o = config_.tracking;
+  const int inliers = countTracked(frame);
+  if (frame.stamp - last_frame_.stamp <= o.recheck_gap_s ||
+      inliers >= o.recheck_inlier_ratio * countTracked(last_frame_))
+    return true;
+  recheck = GapRecheck::kMotionKept;
+  Frame from_reference = frame;
+  if (!trackReferenceKeyFrame(from_reference) || countTracked(from_reference) <= inliers) return true;
+  frame = std::move(from_reference);
+  recheck = GapRecheck::kReferenceTaken;
+  Frame guessed = frame;
+  guessed.clearMatches();
+  if (matchFromLastFrame(guessed, last_frame_, *geometry_, o, o.motion_search_radius) < o.min_matches_motion)
+    return true;
+  optimizePose(guessed);
+  dropOutliers(guessed);
+  if (countTracked(guessed) > countTracked(frame)) frame = std::move(guessed);
+  return true;
+}
+
 bool Tracker::trackReferenceKeyFrame(Frame& frame) {
   if (!reference_kf_) return false;
   const auto& o = config_.tracking;

@@ -56,6 +56,8 @@ void printOrbAndTracking(const TrackerConfig& c, FieldPrinter& put) {
   put("tracking.min_inliers_after_reloc", t.min_inliers_after_reloc);
   put("tracking.max_local_keyframes", t.max_local_keyframes);
   put("tracking.temporal_points", t.temporal_points);
+  put("tracking.recheck_gap_s", t.recheck_gap_s);
+  put("tracking.recheck_inlier_ratio", t.recheck_inlier_ratio);
 }
 
 void printMatcherAndPose(const TrackerConfig& c, FieldPrinter& put) {

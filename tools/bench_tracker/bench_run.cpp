@@ -99,6 +99,8 @@ void printRunSummary(const OfflineResult& result, const FrameTimes& times, long 
   std::printf("frames tracked   %zu\n", result.trajectory.size());
   std::printf("frames lost      %d%s\n", result.frames_lost, result.lost_at_end ? " (lost at the end)" : "");
   std::printf("keyframes        %zu\n", result.keyframe_trajectory.size());
+  std::printf("gap rechecks     %d, %d tracked from the reference keyframe (tracking.recheck_*)\n",
+              result.gap_rechecks, result.gap_reference_taken);
   std::printf("track ms median  %.2f\n", result.track_ms.median());
   std::printf("track ms p95     %.2f\n", result.track_ms.p95());
   std::printf("track ms mean    %.2f\n", result.track_ms.mean());

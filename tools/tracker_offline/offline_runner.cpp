@@ -29,6 +29,8 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     out.track_ms.add(r.processing_ms);
     out.frames_lost += r.state == TrackingState::kLost;
     out.lost_at_end = r.state == TrackingState::kLost;
+    out.gap_rechecks += r.gap_recheck != GapRecheck::kNone;
+    out.gap_reference_taken += r.gap_recheck == GapRecheck::kReferenceTaken;
     ++out.frames;
     if (options.on_result) options.on_result(r, *frame);
     if (options.keep_results) out.results.push_back(std::move(r));

@@ -45,7 +45,9 @@ struct OfflineResult {
   std::vector<TrackResult> results;  // one per frame, in order
   TimingStats track_ms;              // Tracker::track per frame
   int frames = 0;
-  int frames_lost = 0;  // frames whose state was LOST
+  int frames_lost = 0;          // frames whose state was LOST
+  int gap_rechecks = 0;         // frames whose motion-model pose was checked after a gap (tracking.recheck_*)
+  int gap_reference_taken = 0;  // ... and tracked from the reference keyframe instead
   bool lost_at_end = false;
 };
 
