@@ -96,10 +96,10 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
 bool Tracker::trackFromLastFrame(Frame& frame, GapRecheck& recheck) {
   if (!trackWithMotionModel(frame)) return trackReferenceKeyFrame(frame);
   const auto& o = config_.tracking;
+  // Off, or no gap: nothing to count (every frame passes here).
+  if (o.recheck_inlier_ratio <= 0.0 || frame.stamp - last_frame_.stamp <= o.recheck_gap_s) return true;
   const int inliers = countTracked(frame);
-  if (frame.stamp - last_frame_.stamp <= o.recheck_gap_s ||
-      inliers >= o.recheck_inlier_ratio * countTracked(last_frame_))
-    return true;
+  if (inliers >= o.recheck_inlier_ratio * countTracked(last_frame_)) return true;
   recheck = GapRecheck::kMotionKept;
   Frame from_reference = frame;
   if (!trackReferenceKeyFrame(from_reference) || countTracked(from_reference) <= inliers) return true;
