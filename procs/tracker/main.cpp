@@ -15,7 +15,8 @@ int run(ProcessContext& ctx) {
   finishConfig(ctx);
   const TrackerChannels channels{s.frames_channel, s.pose_channel, s.keyframe_channel,
                                  s.keyframe_poses_channel, s.detections_channel};
-  const TrackerOutputs outputs{ctx.args.value("trajectory"), ctx.args.value("keyframe-trajectory")};
+  const TrackerOutputs outputs{ctx.args.value("trajectory"), ctx.args.value("keyframe-trajectory"),
+                               ctx.args.value("frame-log")};
   TrackerNode node(ctx, s.tracker, channels, s.frame_queue_capacity, outputs, s.detections);
   ctx.status.tick(true);
   node.run(ctx.args.number("idle-exit"));

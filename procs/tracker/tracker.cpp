@@ -23,6 +23,34 @@ const char* toString(TrackingState state) {
   return "?";
 }
 
+const char* toString(GapRecheck recheck) {
+  switch (recheck) {
+    case GapRecheck::kNone:
+      return "none";
+    case GapRecheck::kMotionKept:
+      return "motion_kept";
+    case GapRecheck::kReferenceTaken:
+      return "reference_taken";
+  }
+  return "?";
+}
+
+const char* toString(PoseSource source) {
+  switch (source) {
+    case PoseSource::kNone:
+      return "none";
+    case PoseSource::kMapStart:
+      return "map_start";
+    case PoseSource::kMotionModel:
+      return "motion";
+    case PoseSource::kReferenceKeyFrame:
+      return "reference";
+    case PoseSource::kRelocalisation:
+      return "relocalisation";
+  }
+  return "?";
+}
+
 Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
     : config_(config),
       geometry_(std::make_shared<const FrameGeometry>(camera, config)),
@@ -58,14 +86,20 @@ TrackResult Tracker::track(const TrackerInput& input) {
     bool tracked = false;
     if (state_ == TrackingState::kInitialising) {
       tracked = initialise(frame, result);
+      result.pose_source = PoseSource::kMapStart;
     } else {
       prepareLastFrame();  // follow BA corrections and fusions; temporary depth points for the motion model
+      if (last_frame_.features) result.since_last_s = frame.stamp - last_frame_.stamp;
+      bool first = false;
       if (state_ == TrackingState::kLost) {
-        tracked = relocalise(frame) && trackLocalMap(frame);
-        if (tracked) last_reloc_seq_ = frame.seq;
+        result.pose_source = PoseSource::kRelocalisation;
+        first = relocalise(frame);
       } else {
-        tracked = trackFromLastFrame(frame, result.gap_recheck) && trackLocalMap(frame);
+        first = trackFromLastFrame(frame, result);
       }
+      if (first) result.first_inliers = countTracked(frame);
+      tracked = first && trackLocalMap(frame);
+      if (tracked && state_ == TrackingState::kLost) last_reloc_seq_ = frame.seq;
       if (tracked) {
         state_ = last_reloc_seq_ == frame.seq ? TrackingState::kRelocalised : TrackingState::kOk;
         // After relocalisation the last frame is from before the loss: no velocity from it.
@@ -88,6 +122,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
       }
     }
     if (tracked) rememberFrame(frame);
+    if (!tracked) result.pose_source = PoseSource::kNone;  // its first inliers stay: why it was lost
     result.state = state_;
     result.T_world_cam = frame.T_world_cam();
     result.num_map_points = static_cast<int>(map_.numPoints());

@@ -39,6 +39,11 @@ struct TrackerInput {
 // After a gap, whether the motion model's pose was checked against the reference keyframe's
 // (tracking.recheck_*) and which was kept.
 enum class GapRecheck : uint8_t { kNone, kMotionKept, kReferenceTaken };
+const char* toString(GapRecheck recheck);
+
+// Where the frame's first pose came from, before the local map search refined it.
+enum class PoseSource : uint8_t { kNone, kMapStart, kMotionModel, kReferenceKeyFrame, kRelocalisation };
+const char* toString(PoseSource source);
 
 struct TrackResult {
   double stamp = 0.0;
@@ -65,6 +70,10 @@ struct TrackResult {
   // keypoint that is one pulls the camera along with it.
   std::vector<uint8_t> keypoint_in_pose;
   GapRecheck gap_recheck = GapRecheck::kNone;
+  PoseSource pose_source = PoseSource::kNone;  // kNone: not tracked
+  int first_inliers =
+      0;  // inliers of that first pose: a low count before a good local map search is a warning
+  double since_last_s = 0.0;   // after the last tracked frame (0 for the first): frames dropped make it long
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
   double dynamic_ms = 0.0;     // the dynamic stage: observations, priors, geometric test, keyframe mask
@@ -109,7 +118,7 @@ class Tracker {
   void optimizePose(Frame& frame);
   // The motion model, else the reference keyframe; after a gap, the better of the two
   // (tracking.recheck_*).
-  bool trackFromLastFrame(Frame& frame, GapRecheck& recheck);
+  bool trackFromLastFrame(Frame& frame, TrackResult& result);
   bool trackWithMotionModel(Frame& frame);
   bool trackReferenceKeyFrame(Frame& frame);
   bool relocalise(Frame& frame);

@@ -9,6 +9,10 @@ void addTrackerOptions(ArgParser& args) {
                  "every tracked frame's pose (TUM format): written as tracked, replaced by the optimised "
                  "trajectory on exit");
   args.addOption("keyframe-trajectory", "FILE", "the keyframe poses (TUM format), likewise");
+  args.addOption(
+      "frame-log", "FILE",
+      "one tab-separated line per frame: state, inliers of the first pose and after the local map, "
+      "where the first pose came from, frames missed before it, boxes own/stale/none, times");
   args.addOption("frame-policy", "every|latest",
                  "every: reproducible (wait for each frame's boxes, map inline; lockstep runs); latest: real "
                  "time, never wait",
@@ -21,7 +25,8 @@ void addTrackerOptions(ArgParser& args) {
       "(colour, depth, dynamic mask) and SLAM_KEYFRAME_POSES after local bundle adjustment; uses DETECTIONS\n"
       "for the dynamic stage.\n"
       "Example:\n"
-      "  bmp-tracker --trajectory out/trajectory.txt --keyframe-trajectory out/keyframes.txt\n");
+      "  bmp-tracker --trajectory out/trajectory.txt --keyframe-trajectory out/keyframes.txt \\\n"
+      "              --frame-log out/frames.tsv\n");
 }
 
 void applyDynamicModeOption(const ArgParser& args, TrackerConfig& config) {

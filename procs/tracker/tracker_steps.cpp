@@ -93,8 +93,13 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
 // the reference keyframe's descriptor matches, which need no guess, are tried too. If they keep more inliers,
 // their pose is the guess the motion model lacked: the last frame's points are searched again around it
 // (descriptor matches alone are fewer and less precise), and the better of the two is kept.
-bool Tracker::trackFromLastFrame(Frame& frame, GapRecheck& recheck) {
-  if (!trackWithMotionModel(frame)) return trackReferenceKeyFrame(frame);
+bool Tracker::trackFromLastFrame(Frame& frame, TrackResult& result) {
+  GapRecheck& recheck = result.gap_recheck;
+  if (!trackWithMotionModel(frame)) {
+    result.pose_source = PoseSource::kReferenceKeyFrame;
+    return trackReferenceKeyFrame(frame);
+  }
+  result.pose_source = PoseSource::kMotionModel;
   const auto& o = config_.tracking;
   // Off, or no gap: nothing to count (every frame passes here).
   if (o.recheck_inlier_ratio <= 0.0 || frame.stamp - last_frame_.stamp <= o.recheck_gap_s) return true;
@@ -105,6 +110,7 @@ bool Tracker::trackFromLastFrame(Frame& frame, GapRecheck& recheck) {
   if (!trackReferenceKeyFrame(from_reference) || countTracked(from_reference) <= inliers) return true;
   frame = std::move(from_reference);
   recheck = GapRecheck::kReferenceTaken;
+  result.pose_source = PoseSource::kReferenceKeyFrame;
   Frame guessed = frame;
   guessed.clearMatches();
   if (matchFromLastFrame(guessed, last_frame_, *geometry_, o, o.motion_search_radius) < o.min_matches_motion)

@@ -35,6 +35,47 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   EXPECT_LT(rmse, 0.03) << "ATE RMSE " << rmse;
 }
 
+// Each result says where its first pose came from, how many inliers that kept, and how long after the last
+// tracked frame it came (the frame log's columns): three frames dropped before frame 40 show as a 4-frame
+// gap.
+TEST(TrackerBonn, EachFrameSaysWhereItsFirstPoseCameFromAndAfterWhatGap) {
+  TrackerConfig config;
+  config.mapping.threaded = false;
+  Tracker tracker(bonnCamera(), config);
+  FrameProvider all = tumFolderFrames(test::bonnDir());
+  int index = 0;
+  FrameProvider dropping = [&]() -> std::optional<OfflineFrame> {
+    for (;;) {
+      auto f = all();
+      const int i = index++;
+      if (!f || (i < 37 || i > 39)) return f;  // 37, 38 and 39 never reach the tracker
+    }
+  };
+  OfflineOptions options;
+  options.max_frames = 60;
+  const OfflineResult result = runOffline(tracker, dropping, options);
+  ASSERT_EQ(result.results.size(), 60u);
+  EXPECT_EQ(result.results[0].pose_source, PoseSource::kMapStart);
+  EXPECT_EQ(result.results[0].since_last_s, 0.0);
+  const double period = result.results[2].stamp - result.results[1].stamp;
+  EXPECT_NEAR(period, 1.0 / 30.0, 0.002);
+  for (std::size_t i = 1; i < result.results.size(); ++i) {
+    const TrackResult& r = result.results[i];
+    ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+    // No velocity yet after the map's first frame; after the gap the one-frame velocity may not fit.
+    if (i == 1) {
+      EXPECT_EQ(r.pose_source, PoseSource::kReferenceKeyFrame);
+    } else if (i != 37) {
+      EXPECT_EQ(r.pose_source, PoseSource::kMotionModel) << "frame " << i;
+    }
+    // The first pose keeps a good share of the final inliers; the local map adds to them.
+    EXPECT_GT(r.first_inliers, 100) << "frame " << i;
+    EXPECT_LE(r.first_inliers, r.num_tracked + 50) << "frame " << i;
+    const double frames = i == 37 ? 4.0 : 1.0;  // result 37 is Bonn's frame 40
+    EXPECT_NEAR(r.since_last_s, frames * period, 0.003) << "frame " << i;
+  }
+}
+
 // The whole sequence, people walking close to the camera throughout, with no dynamic handling.
 TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
   TrackerConfig config;

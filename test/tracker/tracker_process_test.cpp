@@ -73,12 +73,14 @@ class TrackerUnderTest {
     child_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{test::binPath("bmp-tracker"), "--config",
                                  test::sourceDir() + "/config/tracker.yaml", "--lcm-url", url_,
-                                 "--trajectory", trajectory(), "--keyframe-trajectory", keyframeTrajectory()},
+                                 "--trajectory", trajectory(), "--keyframe-trajectory", keyframeTrajectory(),
+                                 "--frame-log", frameLog()},
         ChildProcess::Output::kFile, logPath());
   }
 
   std::string trajectory() const { return (dir_ / "trajectory.txt").string(); }
   std::string keyframeTrajectory() const { return (dir_ / "keyframes.txt").string(); }
+  std::string frameLog() const { return (dir_ / "frames.tsv").string(); }
   std::string logPath() const { return (dir_ / "bmp-tracker.log").string(); }
   ChildProcess& child() { return *child_; }
 
@@ -190,6 +192,24 @@ TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   }
   EXPECT_NE(test::readFirstLine(t.trajectory()).find("live poses"), std::string::npos);
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
+  // The frame log has a line for every answer heard, written before it, with the answer's counts.
+  std::ifstream log(t.frameLog());
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(log, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream fields(line);
+    rows.emplace_back();
+    for (std::string f; std::getline(fields, f, '\t');) rows.back().push_back(f);
+  }
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    ASSERT_GE(rows[i].size(), 16u) << "line " << i;
+    EXPECT_EQ(rows[i][1], std::to_string(t.poses[i].seq));
+    EXPECT_EQ(rows[i][2], "OK");
+    EXPECT_EQ(rows[i][4], std::to_string(t.poses[i].num_tracked));
+    EXPECT_EQ(rows[i][5], i == 0 ? "map_start" : i == 1 ? "reference" : "motion") << "line " << i;
+    EXPECT_EQ(rows[i][14], "0");  // no frame missed before it
+  }
 }
 
 // A first frame whose camera is unusable (fx NaN or 0, depth scale 0) must not start a map with it: each is

@@ -18,6 +18,7 @@
 #include "detector/detector.hpp"
 #include "detector/detector_settings.hpp"
 #include "eval/ate.hpp"
+#include "tracker/frame_log.hpp"
 #include "tracker/stand_in_boxes.hpp"
 #include "tracker/tracker_settings.hpp"
 #include "tracker_offline/keypoint_score.hpp"
@@ -299,8 +300,19 @@ int runBenchTracker(const bmp::ArgParser& args) {
   const bool score = args.flag("score-masks");
   options.keep_results = false;
   const bool verbose = args.flag("verbose");
-  options.on_result = [report = options.on_result, last, times, scored, score, verbose](
-                          const TrackResult& r, const OfflineFrame& f) {
+  std::shared_ptr<FrameLog> frame_log;
+  if (args.given("frame-log")) frame_log = std::make_shared<FrameLog>(args.value("frame-log"));
+  const bool detect = args.flag("detector") && config.dynamic.mode != DynamicMode::kNone;
+  const bool lagged = args.integer("box-lag") > 0;
+  auto dropped_seen = std::make_shared<long long>(0);
+  options.on_result = [report = options.on_result, last, times, scored, score, verbose, frame_log, detect,
+                       lagged, dropped = input.dropped,
+                       dropped_seen](const TrackResult& r, const OfflineFrame& f) {
+    if (frame_log) {
+      const char* boxes = !detect ? "-" : !f.boxes ? "none" : lagged ? "stale" : "own";
+      frame_log->append(r, {static_cast<int>(*dropped - *dropped_seen), boxes});
+    }
+    *dropped_seen = *dropped;
     times->extract.add(r.extract_ms);
     times->wait.add(r.lock_wait_ms);
     times->dynamic.add(r.dynamic_ms);
@@ -343,6 +355,9 @@ void addBenchTrackerOptions(ArgParser& args) {
                  "1");
   args.addOption("trajectory", "FILE", "write the frame trajectory (TUM format)");
   args.addOption("keyframe-trajectory", "FILE", "write the keyframe trajectory (TUM format)");
+  args.addOption("frame-log", "FILE",
+                 "write one tab-separated line per frame, as bmp-tracker --frame-log (frames missed: those "
+                 "--drop-bursts dropped before it)");
   args.addOption("errors", "FILE",
                  "write each associated frame's position error after alignment (stamp metres)");
   args.addOption("frame-gap-ms", "N", "sleep N ms after each frame (idle time, as between pipeline frames)",

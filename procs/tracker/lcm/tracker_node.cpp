@@ -32,6 +32,7 @@ TrackerNode::TrackerNode(ProcessContext& ctx, TrackerConfig config, TrackerChann
   if (!outputs_.trajectory.empty()) live_trajectory_.emplace(outputs_.trajectory, kLiveComment);
   if (!outputs_.keyframe_trajectory.empty())
     live_keyframes_.emplace(outputs_.keyframe_trajectory, kLiveComment);
+  if (!outputs_.frame_log.empty()) frame_log_.emplace(outputs_.frame_log);
   ctx_.lcm.subscribe<rgbd_frame_t>(channels_.frames,
                                    [this](const rgbd_frame_t& msg, const ReceivedInfo&) { onFrame(msg); });
   receiver_ = std::thread([this] { receive(); });
@@ -210,6 +211,7 @@ void TrackerNode::process(const Queued& frame) {
   // it would point the wrong way.
   const int64_t gaps = lost_before_.load() + static_cast<int64_t>(queue_.dropped());
   if (tracker_ && gaps != gaps_seen_) tracker_->forgetMotion();
+  const int64_t missed = gaps - gaps_seen_;
   gaps_seen_ = gaps;
   cv::Mat color, depth;
   try {
@@ -235,8 +237,22 @@ void TrackerNode::process(const Queued& frame) {
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
+  if (frame_log_) logFrame(r, missed, choice);  // before the answer: whoever heard it finds its line
   publish(msg, r, color, depth, choice.own);
   ctx_.status.processed();
+}
+
+void TrackerNode::logFrame(const TrackResult& r, int64_t missed, const FrameBoxChoice& choice) {
+  const char* boxes = config_.dynamic.mode == DynamicMode::kNone ? "-"
+                      : choice.own                               ? "own"
+                      : choice.boxes                             ? "stale"
+                                                                 : "none";
+  try {
+    frame_log_->append(r, {static_cast<int>(missed), boxes});
+  } catch (const FrameLogError& e) {  // a full disk stops the log, not the tracking
+    log::error(e.what(), "; the frame log stops here");
+    frame_log_.reset();
+  }
 }
 
 void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color,

@@ -23,6 +23,7 @@
 #include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
 #include "tracker/detection_book.hpp"
+#include "tracker/frame_log.hpp"
 #include "tracker/tracker.hpp"
 #include "tracker/tracker_options.hpp"
 #include "tracker/tracker_settings.hpp"
@@ -42,6 +43,7 @@ struct TrackerChannels {
 struct TrackerOutputs {
   std::string trajectory;
   std::string keyframe_trajectory;
+  std::string frame_log;  // one line per frame tracked (frame_log.hpp)
 };
 
 class TrackerNode {
@@ -75,6 +77,7 @@ class TrackerNode {
     bool own = false;                             // the frame's own answer (not a stand-in)
   };
   FrameBoxChoice boxesFor(const rgbd_frame_t& msg);
+  void logFrame(const TrackResult& r, int64_t missed, const FrameBoxChoice& choice);
   // Real time: publishes held keyframes whose answer came (with late boxes applied) or whose time is up.
   void releaseHeldKeyframes(bool all);
   void publish(const rgbd_frame_t& msg, const TrackResult& r, const cv::Mat& color, const cv::Mat& depth,
@@ -116,6 +119,7 @@ class TrackerNode {
   TrackerOutputs outputs_;
   std::optional<TumTrajectoryStream> live_trajectory_;
   std::optional<TumTrajectoryStream> live_keyframes_;
+  std::optional<FrameLog> frame_log_;
   TimingStats timing_;
   int64_t lost_ = 0;
   std::thread receiver_;  // last: started once everything it uses exists
