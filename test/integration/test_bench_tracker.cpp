@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -122,11 +123,12 @@ TEST(BenchTrackerScore, ABoxLagWithoutTheDetectorIsAnErrorNamingTheOption) {
 // becomes one that can be run again), and the tracker keeps tracking across the gaps.
 TEST(BenchTrackerDrops, TheSameSeedDropsTheSameFramesAndTrackingGoesOn) {
   constexpr int kFrames = 120;
-  const auto run = [](const std::string& seed) {
+  const std::string frame_log = (test::scratchDir("drops") / "frames.tsv").string();
+  const auto run = [&](const std::string& seed) {
     return runCommand(
         "drops_" + seed,
         {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--frames", std::to_string(kFrames),
-         "--inline-mapping", "--drop-bursts", "0.15", "--drop-seed", seed},
+         "--inline-mapping", "--drop-bursts", "0.15", "--drop-seed", seed, "--frame-log", frame_log},
         kTimeoutS);
   };
   const Outcome a = run("3");
@@ -134,6 +136,26 @@ TEST(BenchTrackerDrops, TheSameSeedDropsTheSameFramesAndTrackingGoesOn) {
   const double dropped = figure(a.output, "frames dropped");
   EXPECT_GT(dropped, 0.0) << a.output;
   EXPECT_EQ(figure(a.output, "frames") + dropped, kFrames) << a.output;
+  // The frame log has a line per frame tracked, and the frames it says were missed before them are the
+  // dropped ones (each burst before the frame after it, each longer than a frame's period).
+  std::ifstream log(frame_log);
+  int lines = 0, missed = 0, after_gap = 0;
+  for (std::string line; std::getline(log, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream in(line);
+    for (std::string x; std::getline(in, x, '\t');) f.push_back(x);
+    ASSERT_EQ(f.size(), 21u) << line;
+    ++lines;
+    missed += std::stoi(f[14]);
+    if (std::stoi(f[14]) > 0) {
+      ++after_gap;
+      EXPECT_GT(std::stod(f[13]), 60.0) << line;  // since the last frame, ms: at least two periods
+    }
+  }
+  EXPECT_EQ(lines, figure(a.output, "frames")) << a.output;
+  EXPECT_EQ(missed, dropped) << a.output;
+  EXPECT_GT(after_gap, 0);
   EXPECT_EQ(figure(a.output, "frames lost"), 0.0) << a.output;
   EXPECT_LT(figure(a.output, "ATE max m"), 0.10) << a.output;
   const Outcome again = run("3");
