@@ -175,6 +175,19 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
   EXPECT_EQ(test::readFirstLine(t.trajectory()), "# timestamp tx ty tz qx qy qz qw");
 }
 
+// The frame log's rows (not its '#' header), split at tabs.
+std::vector<std::vector<std::string>> frameLogRows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream fields(line);
+    rows.emplace_back();
+    for (std::string f; std::getline(fields, f, '\t');) rows.back().push_back(f);
+  }
+  return rows;
+}
+
 // Killed without a chance to write (SIGKILL), the tracker still leaves every pose it had published.
 TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   TrackerUnderTest t("tracker_killed", 1);
@@ -193,14 +206,7 @@ TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   EXPECT_NE(test::readFirstLine(t.trajectory()).find("live poses"), std::string::npos);
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
   // The frame log has a line for every answer heard, written before it, with the answer's counts.
-  std::ifstream log(t.frameLog());
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(log, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::stringstream fields(line);
-    rows.emplace_back();
-    for (std::string f; std::getline(fields, f, '\t');) rows.back().push_back(f);
-  }
+  const auto rows = frameLogRows(t.frameLog());
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     ASSERT_GE(rows[i].size(), 16u) << "line " << i;
@@ -210,6 +216,29 @@ TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
     EXPECT_EQ(rows[i][5], i == 0 ? "map_start" : i == 1 ? "reference" : "motion") << "line " << i;
     EXPECT_EQ(rows[i][14], "0");  // no frame missed before it
   }
+}
+
+// Two frames that never arrive (a gap in seq) do not throw the velocity away: the frame after them is
+// tracked from the constant-velocity prediction scaled over the gap, as the frame log shows.
+TEST(TrackerProcess, AfterFramesThatNeverArrivedTheMotionModelStillTracks) {
+  TrackerUnderTest t("tracker_gap", 4);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 26; ++i) {
+    if (i == 20 || i == 21) continue;  // never published
+    ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  }
+  EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
+  const auto rows = frameLogRows(t.frameLog());
+  ASSERT_EQ(rows.size(), 24u);
+  const auto& after = rows[20];  // seq 22
+  ASSERT_GE(after.size(), 16u);
+  EXPECT_EQ(after[1], "22");
+  EXPECT_EQ(after[2], "OK");
+  EXPECT_EQ(after[14], "2");                      // frames missed before it
+  EXPECT_NEAR(std::stod(after[13]), 100.0, 5.0);  // 3 periods of Bonn's 30 Hz since the last frame, ms
+  EXPECT_EQ(after[5], "motion");
+  EXPECT_GT(std::stoi(after[6]), 100);  // the prediction kept plenty of the last frame's points
+  for (std::size_t i = 2; i < rows.size(); ++i) EXPECT_EQ(rows[i][5], "motion") << "line " << i;
 }
 
 // A first frame whose camera is unusable (fx NaN or 0, depth scale 0) must not start a map with it: each is

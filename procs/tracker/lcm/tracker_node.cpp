@@ -207,10 +207,11 @@ void TrackerNode::process(const Queued& frame) {
   if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. resynchronised
   if (verdict.lost_before > 0)
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
-  // The constant-velocity prediction spans one frame; after a gap (lost upstream or dropped from our queue)
-  // it would point the wrong way.
+  // Frames missed just before this one (lost upstream or dropped from our queue), for the frame log. The
+  // tracker scales its constant-velocity prediction over the time since the last frame (up to 4 periods), so
+  // the velocity is kept across a gap: forgetting it sent every frame after a gap to the reference
+  // keyframe's descriptor matches, which keep fewer inliers than the scaled prediction.
   const int64_t gaps = lost_before_.load() + static_cast<int64_t>(queue_.dropped());
-  if (tracker_ && gaps != gaps_seen_) tracker_->forgetMotion();
   const int64_t missed = gaps - gaps_seen_;
   gaps_seen_ = gaps;
   cv::Mat color, depth;
