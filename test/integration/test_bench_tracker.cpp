@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -138,19 +137,14 @@ TEST(BenchTrackerDrops, TheSameSeedDropsTheSameFramesAndTrackingGoesOn) {
   EXPECT_EQ(figure(a.output, "frames") + dropped, kFrames) << a.output;
   // The frame log has a line per frame tracked, and the frames it says were missed before them are the
   // dropped ones (each burst before the frame after it, each longer than a frame's period).
-  std::ifstream log(frame_log);
   int lines = 0, missed = 0, after_gap = 0;
-  for (std::string line; std::getline(log, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> f;
-    std::stringstream in(line);
-    for (std::string x; std::getline(in, x, '\t');) f.push_back(x);
-    ASSERT_EQ(f.size(), 21u) << line;
+  for (const auto& f : test::readTsvRows(frame_log)) {
+    ASSERT_EQ(f.size(), 21u);
     ++lines;
     missed += std::stoi(f[14]);
     if (std::stoi(f[14]) > 0) {
       ++after_gap;
-      EXPECT_GT(std::stod(f[13]), 60.0) << line;  // since the last frame, ms: at least two periods
+      EXPECT_GT(std::stod(f[13]), 60.0) << "seq " << f[1];  // since the last frame, ms: at least two periods
     }
   }
   EXPECT_EQ(lines, figure(a.output, "frames")) << a.output;

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -157,21 +156,16 @@ TEST(Launcher, FullPipelineOnBonnTracksAndEvaluates) {
   EXPECT_FALSE(readTumTrajectory((out / "keyframes.txt").string()).empty());
   // The tracker's frame log: a line per frame, each with the detector's own boxes (lockstep waits for them)
   // and no frame missed.
-  std::ifstream frame_log((out / "frames.tsv").string());
-  int logged = 0;
-  for (std::string line; std::getline(frame_log, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, '\t');) fields.push_back(f);
-    ASSERT_EQ(fields.size(), 21u) << line;
-    EXPECT_EQ(fields[1], std::to_string(logged)) << line;  // seq
-    EXPECT_EQ(fields[2], "OK") << line;
-    EXPECT_EQ(fields[14], "0") << line;    // frames missed
-    EXPECT_EQ(fields[15], "own") << line;  // boxes
-    ++logged;
+  const auto logged = test::readTsvRows((out / "frames.tsv").string());
+  ASSERT_EQ(logged.size(), 90u);
+  for (std::size_t i = 0; i < logged.size(); ++i) {
+    const auto& fields = logged[i];
+    ASSERT_EQ(fields.size(), 21u) << "line " << i;
+    EXPECT_EQ(fields[1], std::to_string(i));  // seq
+    EXPECT_EQ(fields[2], "OK") << "line " << i;
+    EXPECT_EQ(fields[14], "0") << "line " << i;    // frames missed
+    EXPECT_EQ(fields[15], "own") << "line " << i;  // boxes
   }
-  EXPECT_EQ(logged, 90);
   const std::string eval = test::readText((out / "eval.json").string());
   const auto ate_at = eval.find("\"ate\"");
   ASSERT_NE(ate_at, std::string::npos) << eval;

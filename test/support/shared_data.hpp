@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace bmp::test {
 
@@ -42,6 +44,20 @@ inline std::filesystem::path scratchDir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// A tab-separated file's rows (lines starting with '#' left out), each split at tabs: e.g. bmp-tracker's
+// frame log.
+inline std::vector<std::vector<std::string>> readTsvRows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream fields(line);
+    rows.emplace_back();
+    for (std::string f; std::getline(fields, f, '\t');) rows.back().push_back(f);
+  }
+  return rows;
 }
 
 // The first line of a text file ("" when it cannot be read).

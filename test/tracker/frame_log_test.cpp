@@ -22,15 +22,6 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-// The data lines (not the '#' header), each split at tabs.
-std::vector<std::vector<std::string>> rows(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> out;
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty() && line[0] != '#') out.push_back(split(line));
-  return out;
-}
-
 TrackResult sample() {
   TrackResult r;
   r.stamp = 1548339820.779820;
@@ -72,7 +63,7 @@ TEST(FrameLog, OneLinePerFrameUnderTheHeaderColumns) {
   EXPECT_EQ(first.rfind("# ", 0), 0u);
   EXPECT_EQ(second, std::string("# ") + FrameLog::columns());
   const std::vector<std::string> names = split(FrameLog::columns());
-  const auto lines = rows(path);
+  const auto lines = test::readTsvRows(path);
   ASSERT_EQ(lines.size(), 2u);
   ASSERT_EQ(lines[0].size(), names.size());
   ASSERT_EQ(lines[1].size(), names.size());
@@ -112,9 +103,10 @@ TEST(FrameLog, EachLineIsOnDiskAsSoonAsItIsWritten) {
     TrackResult r = sample();
     r.seq = i;
     log.append(r, {});
-    ASSERT_EQ(rows(path).size(), static_cast<std::size_t>(i + 1));  // read while the log is still open
+    ASSERT_EQ(test::readTsvRows(path).size(),
+              static_cast<std::size_t>(i + 1));  // read while the log is still open
   }
-  EXPECT_EQ(rows(path)[2][15], "-");  // boxes unknown to the caller
+  EXPECT_EQ(test::readTsvRows(path)[2][15], "-");  // boxes unknown to the caller
 }
 
 TEST(FrameLog, AnUnwritablePathIsAnErrorNamingIt) {

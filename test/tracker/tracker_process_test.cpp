@@ -175,19 +175,6 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
   EXPECT_EQ(test::readFirstLine(t.trajectory()), "# timestamp tx ty tz qx qy qz qw");
 }
 
-// The frame log's rows (not its '#' header), split at tabs.
-std::vector<std::vector<std::string>> frameLogRows(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::stringstream fields(line);
-    rows.emplace_back();
-    for (std::string f; std::getline(fields, f, '\t');) rows.back().push_back(f);
-  }
-  return rows;
-}
-
 // Killed without a chance to write (SIGKILL), the tracker still leaves every pose it had published.
 TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   TrackerUnderTest t("tracker_killed", 1);
@@ -206,7 +193,7 @@ TEST(TrackerProcess, KilledTrackerLeavesThePosesItPublished) {
   EXPECT_NE(test::readFirstLine(t.trajectory()).find("live poses"), std::string::npos);
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
   // The frame log has a line for every answer heard, written before it, with the answer's counts.
-  const auto rows = frameLogRows(t.frameLog());
+  const auto rows = test::readTsvRows(t.frameLog());
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     ASSERT_GE(rows[i].size(), 16u) << "line " << i;
@@ -228,7 +215,7 @@ TEST(TrackerProcess, AfterFramesThatNeverArrivedTheMotionModelStillTracks) {
     ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
   }
   EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
-  const auto rows = frameLogRows(t.frameLog());
+  const auto rows = test::readTsvRows(t.frameLog());
   ASSERT_EQ(rows.size(), 24u);
   const auto& after = rows[20];  // seq 22
   ASSERT_GE(after.size(), 16u);
