@@ -71,8 +71,8 @@ struct TrackResult {
   std::vector<uint8_t> keypoint_in_pose;
   GapRecheck gap_recheck = GapRecheck::kNone;
   PoseSource pose_source = PoseSource::kNone;  // kNone: not tracked
-  int first_inliers =
-      0;  // inliers of that first pose: a low count before a good local map search is a warning
+  // Inliers of that first pose: a low count before a good local map search is a warning.
+  int first_inliers = 0;
   double since_last_s = 0.0;   // after the last tracked frame (0 for the first): frames dropped make it long
   double extract_ms = 0.0;     // ORB extraction
   double lock_wait_ms = 0.0;   // waiting for local mapping to let go of the map
