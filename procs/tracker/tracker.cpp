@@ -57,7 +57,8 @@ Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
       extractor_(config.orb),
       dynamic_(config.dynamic, config.pose),
       mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)),
-      motion_prior_(config.pose) {}
+      motion_prior_(config.pose),
+      refiner_(config.refine) {}
 
 Tracker::~Tracker() {
   finish();
@@ -199,6 +200,7 @@ bool Tracker::initialise(Frame& frame, TrackResult& result) {
   mapper_->submit(kf);
   reference_kf_ = kf;
   last_keyframe_seq_ = frame.seq;
+  ++keyframes_made_;
   state_ = TrackingState::kOk;
   result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
   result.num_tracked = 0;
@@ -280,6 +282,7 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   mapper_->submit(kf);
   reference_kf_ = kf;
   last_keyframe_seq_ = frame.seq;
+  ++keyframes_made_;
   result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
 }
 
@@ -308,10 +311,38 @@ void Tracker::rememberFrame(const Frame& frame) {
   last_T_ref_cam_ = reference_kf_->T_cam_world() * frame.T_world_cam();
   records_.emplace_back(frame.stamp, reference_kf_->id, last_T_ref_cam_);
   last_frame_ = frame;
+  // A keyframe's own pose is refined by local BA itself.
+  if (refiner_.enabled() && last_keyframe_seq_ != frame.seq) {
+    FrameRefiner::Pending pending{records_.size() - 1, keyframes_made_, {}};
+    const Features& f = *frame.features;
+    const FrameGeometry& g = *geometry_;
+    for (int i = 0; i < f.size(); ++i) {
+      if (!inPose(frame, static_cast<std::size_t>(i))) continue;
+      pending.observations.push_back({frame.points[i], f.un[i].cast<float>(),
+                                      static_cast<float>(f.uRight(g, i)),
+                                      static_cast<float>(g.pyramid.inv_sigma2[f.level(i)]), f.weight[i]});
+    }
+    refiner_.add(std::move(pending));
+  }
+  refineSettledFrames(false);
+}
+
+void Tracker::refineSettledFrames(bool all) {
+  const FrameGeometry& g = *geometry_;
+  const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
+  refiner_.takeDue(keyframes_made_, all, [&](const FrameRefiner::Pending& p) {
+    FrameRecord& r = records_[p.record];
+    const SE3 T_world_ref = map_.trajectoryPose(r.reference_id);
+    const std::optional<SE3> refined =
+        refineFramePose(T_world_ref * r.T_ref_cam(), p.observations, camera, config_.pose,
+                        config_.dynamic.threshold, config_.refine.min_inliers);
+    if (refined) r = FrameRecord(r.stamp, r.reference_id, T_world_ref.inverse() * *refined);
+  });
 }
 
 Trajectory Tracker::trajectory() {
   std::lock_guard<std::mutex> lock(map_.mutex());
+  refineSettledFrames(true);
   Trajectory out;
   out.reserve(records_.size());
   for (const auto& r : records_)

@@ -12,6 +12,7 @@
 #include "bmp/common/tum_trajectory.hpp"
 #include "tracker/dynamic_stage.hpp"
 #include "tracker/frame.hpp"
+#include "tracker/frame_refiner.hpp"
 #include "tracker/local_mapper.hpp"
 #include "tracker/map.hpp"
 #include "tracker/motion_prior.hpp"
@@ -132,6 +133,9 @@ class Tracker {
   void insertKeyFrame(Frame& frame, TrackResult& result);
   void prepareLastFrame();
   void rememberFrame(const Frame& frame);
+  // The frames whose reference keyframe has settled get their second look (frame_refiner.hpp); with all,
+  // every frame still waiting. The caller holds the map lock.
+  void refineSettledFrames(bool all);
   int countTracked(const Frame& frame) const;
   // The input's person boxes, where the keypoint budget is spent sparingly (every mode with boxes).
   SparseRegions sparseRegions(const TrackerInput& input) const;
@@ -171,6 +175,8 @@ class Tracker {
   int64_t last_reloc_seq_ = -1000000;
   double dynamic_ms_ = 0.0;  // the current frame's time in the dynamic stage, spread over several steps
   std::deque<FrameRecord> records_;  // a deque: no copy of the whole run's records when it grows
+  FrameRefiner refiner_;             // frames waiting for their second look, by index into records_
+  int64_t keyframes_made_ = 0;
 };
 
 }  // namespace bmp::tracker

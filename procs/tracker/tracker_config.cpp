@@ -161,6 +161,15 @@ MappingOptions mappingOptions(const Config& c) {
   return o;
 }
 
+RefineOptions refineOptions(const Config& c) {
+  RefineOptions o;
+  readAtLeast(c, "after_keyframes", o.after_keyframes, 0);
+  readAtLeast(c, "per_frame", o.per_frame, 1);
+  readAtLeast(c, "max_pending", o.max_pending, 0);
+  readAtLeast(c, "min_inliers", o.min_inliers, 6);
+  return o;
+}
+
 RelocalizationOptions relocalizationOptions(const Config& c) {
   RelocalizationOptions o;
   readAtLeast(c, "candidates", o.candidates, 1);
@@ -222,6 +231,7 @@ TrackerConfig trackerConfigFromConfig(const Config& section) {
   cfg.keyframes = keyframeOptions(section.section("keyframes"));
   cfg.mapping = mappingOptions(section.section("mapping"));
   cfg.reloc = relocalizationOptions(section.section("relocalization"));
+  cfg.refine = refineOptions(section.section("refine"));
   cfg.dynamic = dynamicOptions(section.section("dynamic"));
   return cfg;
 }

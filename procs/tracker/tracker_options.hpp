@@ -116,6 +116,15 @@ struct MappingOptions {
   double keyframe_redundancy = 0.9;  // fraction of points seen by 3 other keyframes: culled
 };
 
+// The saved trajectory's second look at each frame (frame_refiner.hpp).
+struct RefineOptions {
+  int after_keyframes =
+      5;              // re-estimate a frame when its reference keyframe is this many keyframes old (0: off)
+  int per_frame = 2;  // at most this many per tracked frame: the cost is spread, not paid at a keyframe
+  int max_pending = 300;  // frames waiting (about 10 kB each); past this the oldest gets its look at once
+  int min_inliers = 30;   // fewer agreeing points: the frame keeps the pose it was tracked with
+};
+
 struct RelocalizationOptions {
   int candidates = 5;           // keyframes tried with PnP
   int score_descriptors = 300;  // frame descriptors used to rank keyframes
@@ -195,6 +204,7 @@ struct TrackerConfig {
   KeyframeOptions keyframes;
   MappingOptions mapping;
   RelocalizationOptions reloc;
+  RefineOptions refine;
   DynamicOptions dynamic;
 };
 

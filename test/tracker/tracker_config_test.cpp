@@ -118,6 +118,11 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("relocalization.ransac_iterations", r.ransac_iterations);
   put("relocalization.ransac_reprojection_px", r.ransac_reprojection_px);
   put("relocalization.min_pnp_inliers", r.min_pnp_inliers);
+  const RefineOptions& f = c.refine;
+  put("refine.after_keyframes", f.after_keyframes);
+  put("refine.per_frame", f.per_frame);
+  put("refine.max_pending", f.max_pending);
+  put("refine.min_inliers", f.min_inliers);
 }
 
 void printDynamic(const TrackerConfig& c, FieldPrinter& put) {

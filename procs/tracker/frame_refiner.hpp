@@ -1,0 +1,74 @@
+#pragma once
+// The saved trajectory's second look at each frame. A frame's pose is estimated against the map as it stood
+// at that moment; local BA then moves the keyframes and points it was tracked against. Like ORB-SLAM, the
+// trajectory keeps each frame relative to its reference keyframe, so it follows that keyframe's corrections;
+// here the frame is also re-estimated against its own inlier points once its keyframe has settled (left
+// local BA), which takes out the error the frame had against the map of its moment. The live pose published
+// per frame is untouched: this is the trajectory written at the end.
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "bmp/common/se3.hpp"
+#include "tracker/pose_optimizer.hpp"
+#include "tracker/tracker_options.hpp"
+
+namespace bmp::tracker {
+
+class MapPoint;
+
+// One pose inlier of a tracked frame. Weak: a frame waiting for its second look must not keep a culled point
+// alive. Floats: about 40 bytes, kept for the frames of the last few keyframes only.
+struct RefineObservation {
+  std::weak_ptr<MapPoint> point;
+  Eigen::Vector2f uv;        // undistorted pixel
+  float u_right = -1.0f;     // u - bf / depth; negative: no depth
+  float information = 1.0f;  // 1 / sigma^2 of the keypoint's level
+  float weight = 1.0f;       // the weight it had in the frame's pose
+};
+
+// T_world_cam re-estimated against the observations' points as they stand now (those still good and not
+// believed to move by now), or nothing when fewer than min_inliers of them agree.
+std::optional<SE3> refineFramePose(const SE3& T_world_cam, const std::vector<RefineObservation>& observations,
+                                   const PoseCamera& camera, const PoseOptimizerOptions& options,
+                                   double dynamic_threshold, int min_inliers);
+
+// The frames waiting for their second look, oldest first.
+class FrameRefiner {
+ public:
+  struct Pending {
+    std::size_t record = 0;      // the caller's index of the frame's trajectory record
+    int64_t keyframes_made = 0;  // keyframes made before the frame
+    std::vector<RefineObservation> observations;
+  };
+
+  explicit FrameRefiner(const RefineOptions& options) : options_(options) {}
+  bool enabled() const { return options_.after_keyframes > 0; }
+  void add(Pending frame);
+  // Hands the frames due to refine(const Pending&), oldest first: those whose reference keyframe is
+  // after_keyframes old, at most per_frame of them, and any beyond max_pending. With all: every frame.
+  template <typename Refine>
+  void takeDue(int64_t keyframes_made, bool all, Refine&& refine) {
+    int taken = 0;
+    while (!pending_.empty()) {
+      const bool settled = keyframes_made - pending_.front().keyframes_made >= options_.after_keyframes &&
+                           taken < options_.per_frame;
+      const bool overflow = static_cast<int>(pending_.size()) > options_.max_pending;
+      if (!(all || settled || overflow)) break;
+      refine(pending_.front());
+      pending_.pop_front();
+      ++taken;
+    }
+  }
+  std::size_t pending() const { return pending_.size(); }
+
+ private:
+  RefineOptions options_;
+  std::deque<Pending> pending_;
+};
+
+}  // namespace bmp::tracker

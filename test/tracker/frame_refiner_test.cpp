@@ -1,0 +1,135 @@
+// The trajectory's second look at each frame (frame_refiner.hpp): the pose against the points as they stand
+// now, what it leaves out, and when each waiting frame gets it.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tracker/frame_refiner.hpp"
+#include "tracker/map_point.hpp"
+
+namespace bmp::tracker {
+namespace {
+
+const PoseCamera kCamera{525.0, 525.0, 319.5, 239.5, 525.0 * 0.08};
+
+struct Scene {
+  std::vector<std::shared_ptr<MapPoint>> points;
+  std::vector<RefineObservation> observations;
+};
+
+// n points in front of the camera at T_world_cam, observed without noise (with depth on every other one).
+Scene sceneSeenFrom(const SE3& T_world_cam, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(-1.5, 1.5), uz(1.0, 5.0);
+  Scene s;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d p_cam(ux(rng), ux(rng) * 0.75, uz(rng));
+    auto mp = std::make_shared<MapPoint>(i, T_world_cam * p_cam, cv::Mat::zeros(1, 32, CV_8U), 0);
+    const Eigen::Vector2d uv(kCamera.fx * p_cam.x() / p_cam.z() + kCamera.cx,
+                             kCamera.fy * p_cam.y() / p_cam.z() + kCamera.cy);
+    RefineObservation o;
+    o.point = mp;
+    o.uv = uv.cast<float>();
+    o.u_right = i % 2 == 0 ? static_cast<float>(uv.x() - kCamera.bf / p_cam.z()) : -1.0f;
+    s.points.push_back(mp);
+    s.observations.push_back(o);
+  }
+  return s;
+}
+
+const SE3 kTrue =
+    makeSE3(Eigen::Vector3d(0.4, -0.2, 1.1),
+            Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.1, 1, 0.2).normalized())));
+// A tracked pose 2 cm and about a third of a degree off: what a frame carries against a map BA later moved.
+const SE3 kTracked =
+    kTrue * makeSE3(Eigen::Vector3d(0.012, -0.01, 0.012),
+                    Eigen::Quaterniond(Eigen::AngleAxisd(0.006, Eigen::Vector3d(1, 0.5, -0.3).normalized())));
+
+TEST(FrameRefiner, ReestimatesTheFrameAgainstThePointsAsTheyStandNow) {
+  const Scene s = sceneSeenFrom(kTrue, 200, 3);
+  const std::optional<SE3> refined = refineFramePose(kTracked, s.observations, kCamera, {}, 0.5, 30);
+  ASSERT_TRUE(refined);
+  const SE3 error = refined->inverse() * kTrue;
+  EXPECT_LT(error.translation().norm(), 1e-4);
+  EXPECT_LT(rotationAngle(error), 1e-5);
+}
+
+TEST(FrameRefiner, PointsCulledOrFoundMovingSinceTakeNoPart) {
+  Scene s = sceneSeenFrom(kTrue, 200, 4);
+  // 60 points moved 2 cm since the frame saw them, a few pixels, within the outlier test: culled (30) or
+  // found on a mover (30). Taken into the pose they would pull it off; left out, the other 140 give the
+  // true pose.
+  for (int i = 0; i < 60; ++i) {
+    s.points[i]->p_world += Eigen::Vector3d(0.02, 0.0, 0.0);
+    if (i < 30)
+      s.points[i]->bad = true;
+    else
+      s.points[i]->moving_probability = 0.9f;
+  }
+  // A point the map has dropped altogether.
+  s.points[60].reset();
+  const std::optional<SE3> refined = refineFramePose(kTracked, s.observations, kCamera, {}, 0.5, 30);
+  ASSERT_TRUE(refined);
+  EXPECT_LT((refined->inverse() * kTrue).translation().norm(), 1e-4);
+  // With no threshold the 30 moving points count, and the pose goes with them.
+  const std::optional<SE3> pulled = refineFramePose(kTracked, s.observations, kCamera, {}, 1.0, 30);
+  ASSERT_TRUE(pulled);
+  EXPECT_GT((pulled->inverse() * kTrue).translation().norm(), 3e-4);
+}
+
+TEST(FrameRefiner, KeepsTheTrackedPoseWhenTooFewPointsAgree) {
+  Scene few = sceneSeenFrom(kTrue, 20, 5);
+  EXPECT_FALSE(refineFramePose(kTracked, few.observations, kCamera, {}, 0.5, 30));
+  // Enough points, but most of them moved since (the map changed under the frame): no new pose.
+  Scene moved = sceneSeenFrom(kTrue, 100, 6);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> shift(-0.3, 0.3);
+  for (int i = 0; i < 70; ++i)
+    moved.points[i]->p_world += Eigen::Vector3d(shift(rng), shift(rng), shift(rng));
+  EXPECT_FALSE(refineFramePose(kTracked, moved.observations, kCamera, {}, 0.5, 30));
+}
+
+std::vector<std::size_t> takeDue(FrameRefiner& refiner, int64_t keyframes_made, bool all = false) {
+  std::vector<std::size_t> records;
+  refiner.takeDue(keyframes_made, all, [&](const FrameRefiner::Pending& p) { records.push_back(p.record); });
+  return records;
+}
+
+TEST(FrameRefiner, EachFrameWaitsUntilItsKeyframeHasSettledThenGoesOldestFirstAFewAtATime) {
+  RefineOptions options;
+  options.after_keyframes = 2;
+  options.per_frame = 2;
+  options.max_pending = 100;
+  FrameRefiner refiner(options);
+  for (std::size_t r = 0; r < 5; ++r) refiner.add({r, 1, {}});  // tracked after keyframe 1 ...
+  refiner.add({5, 2, {}});                                      // ... and one after keyframe 2
+  EXPECT_TRUE(takeDue(refiner, 2).empty());                     // keyframe 1 still in local BA
+  EXPECT_EQ(takeDue(refiner, 3), (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(takeDue(refiner, 3), (std::vector<std::size_t>{2, 3}));
+  EXPECT_EQ(takeDue(refiner, 3), (std::vector<std::size_t>{4}));  // record 5's keyframe is 1 old
+  EXPECT_EQ(refiner.pending(), 1u);
+  EXPECT_EQ(takeDue(refiner, 3, true), (std::vector<std::size_t>{5}));  // the end of the run: all
+  EXPECT_EQ(refiner.pending(), 0u);
+}
+
+TEST(FrameRefiner, ACameraThatMakesNoKeyframeDoesNotHoldFramesWithoutBound) {
+  RefineOptions options;
+  options.after_keyframes = 5;
+  options.max_pending = 3;
+  FrameRefiner refiner(options);
+  for (std::size_t r = 0; r < 6; ++r) refiner.add({r, 0, {}});
+  EXPECT_EQ(takeDue(refiner, 0), (std::vector<std::size_t>{0, 1, 2}));  // over the bound, oldest first
+  EXPECT_EQ(refiner.pending(), 3u);
+}
+
+TEST(FrameRefiner, OffKeepsNothing) {
+  RefineOptions options;
+  options.after_keyframes = 0;
+  FrameRefiner refiner(options);
+  refiner.add({0, 0, {}});
+  EXPECT_EQ(refiner.pending(), 0u);
+  EXPECT_TRUE(takeDue(refiner, 10, true).empty());
+}
+
+}  // namespace
+}  // namespace bmp::tracker
