@@ -181,6 +181,9 @@ TEST(Launcher, FullPipelineOnBonnTracksAndEvaluates) {
   EXPECT_NE(eval.find("\"constant\": true"), std::string::npos) << eval;
   EXPECT_NE(o.output.find("not camera orientations"), std::string::npos) << o.output;
   EXPECT_TRUE(fs::exists(out / "plots"));
+  // The frame log drawn beside the error plots (bmp-eval --frame-log).
+  ASSERT_TRUE(fs::exists(out / "plots" / "trajectory_frames.png")) << o.output;
+  EXPECT_GT(fs::file_size(out / "plots" / "trajectory_frames.png"), 10'000u);
   // The run summary heard every frame's answers, with the processes' own timing.
   const std::string summary = test::readText((out / "summary.json").string());
   EXPECT_NE(summary.find("\"tracker\": {\"frames\": 90"), std::string::npos) << summary;

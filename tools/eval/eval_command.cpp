@@ -10,6 +10,7 @@
 #include "eval/eval_input.hpp"
 #include "eval/eval_plot.hpp"
 #include "eval/eval_report.hpp"
+#include "eval/frame_log_plot.hpp"
 #include "eval/rpe.hpp"
 
 namespace bmp::eval {
@@ -29,6 +30,10 @@ ArgParser makeEvalParser() {
   args.addOption("json", "FILE", "also write the results as JSON");
   args.addOption("plot-dir", "DIR",
                  "write PNG plots there (created if needed): <label>_trajectory.png, <label>_errors.png");
+  args.addOption(
+      "frame-log", "FILE",
+      "the tracker's per-frame log (bmp-tracker --frame-log); with --plot-dir also "
+      "<label>_frames.png: inliers, first poses' sources, missed frames and tracking time over time");
   args.addOption("aligned", "FILE", "write the whole estimate aligned to the ground truth (TUM format)");
   args.addOption("label", "NAME",
                  "name of the run, used in titles and plot file names (default: the --est file name "
@@ -112,6 +117,18 @@ void writePlots(const std::filesystem::path& dir, const EvalReport& report, cons
   std::cout << "plots: " << trajectory_png << ", " << errors_png << "\n";
 }
 
+// The frames plot is a picture of the run, not part of the evaluation: a log it cannot read is reported and
+// the evaluation stands.
+void writeFramePlot(const std::filesystem::path& dir, const std::string& log_path, const std::string& label) {
+  const std::string frames_png = (dir / (fileSafe(label) + "_frames.png")).string();
+  try {
+    plotFrameLog(frames_png, readFrameLog(log_path), label);
+    std::cout << "plots: " << frames_png << "\n";
+  } catch (const EvalError& e) {
+    std::cerr << "bmp-eval: no frames plot: " << e.what() << "\n";
+  }
+}
+
 }  // namespace
 
 int runEval(const ArgParser& args) {
@@ -129,6 +146,8 @@ int runEval(const ArgParser& args) {
     }
   }
   if (args.given("plot-dir")) writePlots(args.value("plot-dir"), report, gt, aligned);
+  if (args.given("plot-dir") && args.given("frame-log"))
+    writeFramePlot(args.value("plot-dir"), args.value("frame-log"), report.label);
   return 0;
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "eval/eval_error.hpp"
@@ -20,16 +19,6 @@ const cv::Scalar kLinkColor(150, 150, 240);
 const cv::Scalar kAteColor(190, 110, 20);
 const cv::Scalar kRpeColor(40, 140, 40);
 const cv::Scalar kRmseColor(40, 40, 200);
-
-void save(const std::string& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, image);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw EvalError(path + ": cannot write plot");
-}
 
 std::string format(const char* fmt, double v) {
   char buffer[64];
@@ -95,7 +84,7 @@ void plotTrajectoryTopView(const std::string& path, const Trajectory& gt, const 
                       format("%.2f cm", ate.stats.rmse * 100) + " over " + std::to_string(ate.stats.count) +
                       " pairs",
                   {image.cols / 2, 50}, 0.5, 1);
-  save(path, image);
+  savePlot(path, image);
 }
 
 void plotErrorsOverTime(const std::string& path, const AteResult& ate, const RpeResult& rpe, double t0,
@@ -137,7 +126,7 @@ void plotErrorsOverTime(const std::string& path, const AteResult& ate, const Rpe
             "relative pose error, translation, " + rpe_caption + " (" + std::to_string(rpe.trans.count) +
                 " pairs)");
   putTextCentered(image, title, {image.cols / 2, 22}, 0.65, 1);
-  save(path, image);
+  savePlot(path, image);
 }
 
 }  // namespace bmp::eval

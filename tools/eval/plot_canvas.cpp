@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "eval/eval_error.hpp"
 
 namespace bmp::eval {
 
@@ -173,6 +176,16 @@ void putTextVertical(cv::Mat& image, const std::string& text, cv::Point center, 
   target &= cv::Rect(0, 0, image.cols, image.rows);
   if (target.area() == 0) return;
   rotated(cv::Rect(0, 0, target.width, target.height)).copyTo(image(target));
+}
+
+void savePlot(const std::string& path, const cv::Mat& image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, image);
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  if (!ok) throw EvalError(path + ": cannot write plot");
 }
 
 }  // namespace bmp::eval

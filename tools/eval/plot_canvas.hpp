@@ -53,4 +53,7 @@ void putTextCentered(cv::Mat& image, const std::string& text, cv::Point center, 
 void putTextVertical(cv::Mat& image, const std::string& text, cv::Point center, double scale,
                      const cv::Scalar& color = cv::Scalar(30, 30, 30));
 
+// Writes the image as PNG; throws EvalError naming the path when it cannot.
+void savePlot(const std::string& path, const cv::Mat& image);
+
 }  // namespace bmp::eval

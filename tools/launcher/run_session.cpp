@@ -166,6 +166,11 @@ int evaluate(const LaunchPlan& plan, const RunRequest& request, OutputRelay& rel
       "bmp-eval",
       {(fs::path(request.bin_dir) / "bmp-eval").string(), "--gt", plan.groundtruth_path, "--est",
        plan.trajectory_path, "--json", (out / "eval.json").string(), "--plot-dir", (out / "plots").string()}};
+  // The tracker's frame log, when the run wrote one, becomes a picture beside the error plots.
+  if (fs::exists(out / "frames.tsv")) {
+    eval.argv.push_back("--frame-log");
+    eval.argv.push_back((out / "frames.tsv").string());
+  }
   auto child = start(eval, logs, relay, true);
   while (relay.pump(100)) {
   }

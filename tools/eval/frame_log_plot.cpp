@@ -1,0 +1,150 @@
+#include "eval/frame_log_plot.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "eval/eval_error.hpp"
+#include "eval/plot_canvas.hpp"
+
+namespace bmp::eval {
+
+namespace {
+
+constexpr double kFramePeriodMs = 1000.0 / 30.0;  // a 30 Hz camera's budget per frame
+
+// BGR colours.
+const cv::Scalar kTrackedColor(150, 120, 60);
+const cv::Scalar kMotionColor(120, 190, 120);
+const cv::Scalar kReferenceColor(0, 140, 255);
+const cv::Scalar kRelocColor(200, 40, 200);
+const cv::Scalar kMissedColor(40, 40, 220);
+const cv::Scalar kTimeColor(60, 60, 60);
+const cv::Scalar kPeriodColor(40, 40, 200);
+
+std::vector<std::string> splitTabs(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, '\t')) out.push_back(field);
+  return out;
+}
+
+template <typename T>
+T parse(const std::string& text, const std::string& where) {
+  std::istringstream in(text);
+  T value{};
+  if (!(in >> value) || !in.eof()) throw EvalError(where + ": '" + text + "' is not a number");
+  return value;
+}
+
+cv::Scalar sourceColor(const std::string& source) {
+  if (source == "reference") return kReferenceColor;
+  if (source == "relocalisation") return kRelocColor;
+  return kMotionColor;
+}
+
+}  // namespace
+
+std::vector<FrameLogRow> readFrameLog(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw EvalError(path + ": cannot open frame log");
+  std::map<std::string, std::size_t> column;
+  std::vector<FrameLogRow> rows;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string where = path + ":" + std::to_string(number);
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      if (line.rfind("# stamp\t", 0) == 0) {
+        const std::vector<std::string> names = splitTabs(line.substr(2));
+        for (std::size_t i = 0; i < names.size(); ++i) column[names[i]] = i;
+      }
+      continue;
+    }
+    if (column.empty()) throw EvalError(where + ": a frame line before the '# stamp' header");
+    const std::vector<std::string> f = splitTabs(line);
+    const auto field = [&](const char* name) -> const std::string& {
+      const auto it = column.find(name);
+      if (it == column.end()) throw EvalError(path + ": the header has no column '" + name + "'");
+      if (it->second >= f.size())
+        throw EvalError(where + ": " + std::to_string(f.size()) + " fields, no '" + name + "'");
+      return f[it->second];
+    };
+    FrameLogRow r;
+    r.stamp = parse<double>(field("stamp"), where);
+    r.state = field("state");
+    r.tracked = parse<int>(field("tracked"), where);
+    r.pose_source = field("pose_source");
+    r.first_inliers = parse<int>(field("first_inliers"), where);
+    r.frames_missed = parse<int>(field("frames_missed"), where);
+    r.track_ms = parse<double>(field("track_ms"), where);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+void plotFrameLog(const std::string& path, const std::vector<FrameLogRow>& rows, const std::string& title) {
+  cv::Mat image(900, 1200, CV_8UC3, cv::Scalar(255, 255, 255));
+  const cv::Rect top(110, 70, 1050, 380);
+  const cv::Rect bottom(110, 560, 1050, 260);
+  const double t0 = rows.empty() ? 0.0 : rows.front().stamp;
+  Range t{0.0, rows.empty() ? 1.0 : std::max(rows.back().stamp - t0, 1e-3)};
+  t = padded(t, 0.01);
+
+  int max_inliers = 1;
+  double max_ms = kFramePeriodMs;
+  int missed = 0, lost = 0, reference = 0;
+  for (const FrameLogRow& r : rows) {
+    max_inliers = std::max({max_inliers, r.tracked, r.first_inliers});
+    max_ms = std::max(max_ms, r.track_ms);
+    missed += r.frames_missed;
+    lost += r.state == "LOST";
+    reference += r.pose_source == "reference";
+  }
+  PlotPanel inliers(image, top, t, {0.0, max_inliers * 1.1});
+  inliers.drawAxes("time since the first frame [s]", "inliers");
+  std::vector<cv::Point2d> tracked;
+  for (const FrameLogRow& r : rows) tracked.emplace_back(r.stamp - t0, r.tracked);
+  for (const FrameLogRow& r : rows) {
+    const double x = r.stamp - t0;
+    if (r.frames_missed > 0)  // a tick as high as the frames missed, 5 % of the panel each
+      inliers.segment({x, 0.0}, {x, max_inliers * 0.05 * std::min(r.frames_missed, 10)}, kMissedColor, 2);
+    if (r.state == "LOST") inliers.marker({x, 0.0}, kMissedColor, 4, true);
+  }
+  inliers.polyline(tracked, kTrackedColor, 1);
+  for (const FrameLogRow& r : rows) {
+    if (r.pose_source == "none" || r.pose_source == "map_start") continue;
+    const bool notable = r.pose_source != "motion";
+    inliers.marker({r.stamp - t0, static_cast<double>(r.first_inliers)}, sourceColor(r.pose_source),
+                   notable ? 4 : 1, notable);
+  }
+  inliers.legend({{"tracked (after the local map)", kTrackedColor, 2},
+                  {"first pose: motion model", kMotionColor, 2},
+                  {"first pose: reference keyframe", kReferenceColor, 2},
+                  {"first pose: relocalisation", kRelocColor, 2},
+                  {"frames missed before (tick) / lost (dot)", kMissedColor, 2}},
+                 tracked);
+  putTextCentered(image,
+                  "inliers per frame (" + std::to_string(rows.size()) + " frames, " + std::to_string(missed) +
+                      " missed, " + std::to_string(lost) + " lost, " + std::to_string(reference) +
+                      " from the reference keyframe)",
+                  {top.x + top.width / 2, top.y - 16}, 0.55, 1);
+
+  PlotPanel time(image, bottom, t, {0.0, max_ms * 1.1});
+  time.drawAxes("time since the first frame [s]", "track [ms]");
+  std::vector<cv::Point2d> ms;
+  for (const FrameLogRow& r : rows) ms.emplace_back(r.stamp - t0, r.track_ms);
+  time.polyline(ms, kTimeColor, 1);
+  time.referenceLine(kFramePeriodMs, kPeriodColor, "30 Hz");
+  putTextCentered(image, "tracking time per frame", {bottom.x + bottom.width / 2, bottom.y - 16}, 0.55, 1);
+  if (rows.empty())
+    putTextCentered(image, "no frames", {top.x + top.width / 2, top.y + top.height / 2}, 0.7, 1);
+  putTextCentered(image, title, {image.cols / 2, 22}, 0.65, 1);
+  savePlot(path, image);
+}
+
+}  // namespace bmp::eval
