@@ -50,18 +50,23 @@ class FrameRefiner {
   bool enabled() const { return options_.after_keyframes > 0; }
   void add(Pending frame);
   // Hands the frames due to refine(const Pending&), oldest first: those whose reference keyframe is
-  // after_keyframes old, at most per_frame of them, and any beyond max_pending. With all: every frame.
+  // after_keyframes old, at most per_frame of them. Frames whose keyframe has not settled when the run ends
+  // (all), or beyond max_pending (a camera that makes no keyframes), are let go with the pose they were
+  // tracked with: local BA has not moved the map under them, so a second look has nothing to correct, and
+  // it would lose the motion prior that held them (a camera at rest while a crowd passes: 1.6 -> 5.6 mm).
   template <typename Refine>
   void takeDue(int64_t keyframes_made, bool all, Refine&& refine) {
     int taken = 0;
     while (!pending_.empty()) {
-      const bool settled = keyframes_made - pending_.front().keyframes_made >= options_.after_keyframes &&
-                           taken < options_.per_frame;
+      const bool settled = keyframes_made - pending_.front().keyframes_made >= options_.after_keyframes;
       const bool overflow = static_cast<int>(pending_.size()) > options_.max_pending;
-      if (!(all || settled || overflow)) break;
-      refine(pending_.front());
+      if (settled && (all || taken < options_.per_frame)) {
+        refine(pending_.front());
+        ++taken;
+      } else if (!(overflow || (all && !settled))) {
+        break;
+      }
       pending_.pop_front();
-      ++taken;
     }
   }
   std::size_t pending() const { return pending_.size(); }

@@ -108,8 +108,12 @@ TEST(FrameRefiner, EachFrameWaitsUntilItsKeyframeHasSettledThenGoesOldestFirstAF
   EXPECT_EQ(takeDue(refiner, 3), (std::vector<std::size_t>{2, 3}));
   EXPECT_EQ(takeDue(refiner, 3), (std::vector<std::size_t>{4}));  // record 5's keyframe is 1 old
   EXPECT_EQ(refiner.pending(), 1u);
-  EXPECT_EQ(takeDue(refiner, 3, true), (std::vector<std::size_t>{5}));  // the end of the run: all
+  // The end of the run: record 5's keyframe never settled, so it keeps its tracked pose and is let go.
+  EXPECT_TRUE(takeDue(refiner, 3, true).empty());
   EXPECT_EQ(refiner.pending(), 0u);
+  // Settled frames still waiting at the end all get their look, however many.
+  for (std::size_t r = 6; r < 10; ++r) refiner.add({r, 3, {}});
+  EXPECT_EQ(takeDue(refiner, 5, true), (std::vector<std::size_t>{6, 7, 8, 9}));
 }
 
 TEST(FrameRefiner, ACameraThatMakesNoKeyframeDoesNotHoldFramesWithoutBound) {
@@ -118,8 +122,10 @@ TEST(FrameRefiner, ACameraThatMakesNoKeyframeDoesNotHoldFramesWithoutBound) {
   options.max_pending = 3;
   FrameRefiner refiner(options);
   for (std::size_t r = 0; r < 6; ++r) refiner.add({r, 0, {}});
-  EXPECT_EQ(takeDue(refiner, 0), (std::vector<std::size_t>{0, 1, 2}));  // over the bound, oldest first
+  // Over the bound the oldest are let go with their tracked pose: no keyframe, no BA under them.
+  EXPECT_TRUE(takeDue(refiner, 0).empty());
   EXPECT_EQ(refiner.pending(), 3u);
+  EXPECT_EQ(takeDue(refiner, 5), (std::vector<std::size_t>{3, 4}));
 }
 
 TEST(FrameRefiner, OffKeepsNothing) {
