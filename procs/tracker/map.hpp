@@ -26,6 +26,8 @@ class Map {
 
   int64_t newKeyFrameId() { return next_keyframe_id_++; }
   int64_t newPointId() { return next_point_id_++; }
+  // Keyframes made so far: their ids are handed out in order from 0.
+  int64_t keyFramesMade() const { return next_keyframe_id_; }
 
   void addKeyFrame(const std::shared_ptr<KeyFrame>& kf);
   void addPoint(const std::shared_ptr<MapPoint>& mp);

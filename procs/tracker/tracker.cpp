@@ -200,7 +200,6 @@ bool Tracker::initialise(Frame& frame, TrackResult& result) {
   mapper_->submit(kf);
   reference_kf_ = kf;
   last_keyframe_seq_ = frame.seq;
-  ++keyframes_made_;
   state_ = TrackingState::kOk;
   result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
   result.num_tracked = 0;
@@ -282,7 +281,6 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   mapper_->submit(kf);
   reference_kf_ = kf;
   last_keyframe_seq_ = frame.seq;
-  ++keyframes_made_;
   result.new_keyframe = KeyFramePose{kf->id, kf->stamp, kf->T_world_cam()};
 }
 
@@ -313,7 +311,7 @@ void Tracker::rememberFrame(const Frame& frame) {
   last_frame_ = frame;
   // A keyframe's own pose is refined by local BA itself.
   if (refiner_.enabled() && last_keyframe_seq_ != frame.seq) {
-    FrameRefiner::Pending pending{records_.size() - 1, keyframes_made_, {}};
+    FrameRefiner::Pending pending{records_.size() - 1, map_.keyFramesMade(), {}};
     const Features& f = *frame.features;
     const FrameGeometry& g = *geometry_;
     for (int i = 0; i < f.size(); ++i) {
@@ -330,7 +328,7 @@ void Tracker::rememberFrame(const Frame& frame) {
 void Tracker::refineSettledFrames(bool all) {
   const FrameGeometry& g = *geometry_;
   const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
-  refiner_.takeDue(keyframes_made_, all, [&](const FrameRefiner::Pending& p) {
+  refiner_.takeDue(map_.keyFramesMade(), all, [&](const FrameRefiner::Pending& p) {
     FrameRecord& r = records_[p.record];
     const SE3 T_world_ref = map_.trajectoryPose(r.reference_id);
     const std::optional<SE3> refined =

@@ -176,7 +176,6 @@ class Tracker {
   double dynamic_ms_ = 0.0;  // the current frame's time in the dynamic stage, spread over several steps
   std::deque<FrameRecord> records_;  // a deque: no copy of the whole run's records when it grows
   FrameRefiner refiner_;             // frames waiting for their second look, by index into records_
-  int64_t keyframes_made_ = 0;
 };
 
 }  // namespace bmp::tracker
