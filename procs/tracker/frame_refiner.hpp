@@ -32,10 +32,19 @@ struct RefineObservation {
 };
 
 // T_world_cam re-estimated against the observations' points as they stand now (those still good and not
-// believed to move by now), or nothing when fewer than min_inliers of them agree.
+// believed to move by now), or nothing when fewer than min_inliers of them agree. With a prior the position
+// is also held to it (between its neighbours, betweenNeighbours()).
 std::optional<SE3> refineFramePose(const SE3& T_world_cam, const std::vector<RefineObservation>& observations,
                                    const PoseCamera& camera, const PoseOptimizerOptions& options,
-                                   double dynamic_threshold, int min_inliers);
+                                   double dynamic_threshold, int min_inliers,
+                                   const PositionPrior* prior = nullptr);
+
+// Where a frame at time t should be, given the frames before (t0, c0) and after (t1, c1) it: on the line
+// between them at its time. By the second look both neighbours are known, so the prior is centred, not a
+// prediction from the past as when the frame was tracked: an unknown acceleration a moves the camera off
+// that line by a (t - t0)(t1 - t) / 2 at most. None when the times are not in order or accel is 0 (off).
+std::optional<PositionPrior> betweenNeighbours(double t0, const Eigen::Vector3d& c0, double t, double t1,
+                                               const Eigen::Vector3d& c1, double accel);
 
 // The frames waiting for their second look, oldest first.
 class FrameRefiner {

@@ -267,8 +267,9 @@ void Tracker::insertKeyFrame(Frame& frame, TrackResult& result) {
   int count = 0;
   for (int i : f.nearestWithDepth()) {
     if (f.depth[i] > geometry_->close_depth && count >= config_.keyframes.new_points_min) break;
+    if (frame.isDynamic(i)) continue;
     ++count;
-    if (kf->points[i] || frame.isDynamic(i)) continue;
+    if (kf->points[i]) continue;
     const Eigen::Vector3d p = frame.T_world_cam() * geometry_->camera.backProject(f.un[i], f.depth[i]);
     auto mp = std::make_shared<MapPoint>(map_.newPointId(), p, f.descriptors.row(i), kf->id);
     mp->initGeometry(kf->center(), f.level(i), *geometry_);
@@ -331,11 +332,23 @@ void Tracker::refineSettledFrames(bool all) {
   refiner_.takeDue(map_.keyFramesMade(), all, [&](const FrameRefiner::Pending& p) {
     FrameRecord& r = records_[p.record];
     const SE3 T_world_ref = map_.trajectoryPose(r.reference_id);
+    // The frames before and after it, as they stand now (the one before has had its second look).
+    std::optional<PositionPrior> prior;
+    if (p.record > 0 && p.record + 1 < records_.size()) {
+      const FrameRecord& before = records_[p.record - 1];
+      const FrameRecord& after = records_[p.record + 1];
+      prior = betweenNeighbours(before.stamp, recordPose(before).translation(), r.stamp, after.stamp,
+                                recordPose(after).translation(), config_.pose.motion_prior_accel);
+    }
     const std::optional<SE3> refined =
         refineFramePose(T_world_ref * r.T_ref_cam(), p.observations, camera, config_.pose,
-                        config_.dynamic.threshold, config_.refine.min_inliers);
+                        config_.dynamic.threshold, config_.refine.min_inliers, prior ? &*prior : nullptr);
     if (refined) r = FrameRecord(r.stamp, r.reference_id, T_world_ref.inverse() * *refined);
   });
+}
+
+SE3 Tracker::recordPose(const FrameRecord& r) const {
+  return map_.trajectoryPose(r.reference_id) * r.T_ref_cam();
 }
 
 Trajectory Tracker::trajectory() {
@@ -343,8 +356,7 @@ Trajectory Tracker::trajectory() {
   refineSettledFrames(true);
   Trajectory out;
   out.reserve(records_.size());
-  for (const auto& r : records_)
-    out.push_back({r.stamp, normalized(map_.trajectoryPose(r.reference_id) * r.T_ref_cam())});
+  for (const auto& r : records_) out.push_back({r.stamp, normalized(recordPose(r))});
   return out;
 }
 

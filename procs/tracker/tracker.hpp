@@ -154,6 +154,7 @@ class Tracker {
     Eigen::Quaternionf q_ref_cam;
   };
   static_assert(sizeof(FrameRecord) <= 48, "a frame record is kept for every frame of the run");
+  SE3 recordPose(const FrameRecord& r) const;  // T_world_cam, by its reference keyframe as it stands now
 
   TrackerConfig config_;
   std::shared_ptr<const FrameGeometry> geometry_;
