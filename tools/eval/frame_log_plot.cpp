@@ -116,18 +116,19 @@ void plotFrameLog(const std::string& path, const std::vector<FrameLogRow>& rows,
     if (r.state == "LOST") inliers.marker({x, 0.0}, kMissedColor, 4, true);
   }
   inliers.polyline(tracked, kTrackedColor, 1);
+  std::vector<cv::Point2d> drawn = tracked;  // the legend goes where it hides fewest of the line and dots
   for (const FrameLogRow& r : rows) {
     if (r.pose_source == "none" || r.pose_source == "map_start") continue;
     const bool notable = r.pose_source != "motion";
-    inliers.marker({r.stamp - t0, static_cast<double>(r.first_inliers)}, sourceColor(r.pose_source),
-                   notable ? 4 : 1, notable);
+    drawn.emplace_back(r.stamp - t0, r.first_inliers);
+    inliers.marker(drawn.back(), sourceColor(r.pose_source), notable ? 4 : 1, notable);
   }
   inliers.legend({{"tracked (after the local map)", kTrackedColor, 2},
                   {"first pose: motion model", kMotionColor, 2},
                   {"first pose: reference keyframe", kReferenceColor, 2},
                   {"first pose: relocalisation", kRelocColor, 2},
                   {"frames missed before (tick) / lost (dot)", kMissedColor, 2}},
-                 tracked);
+                 drawn);
   putTextCentered(image,
                   "inliers per frame (" + std::to_string(rows.size()) + " frames, " + std::to_string(missed) +
                       " missed, " + std::to_string(lost) + " lost, " + std::to_string(reference) +
