@@ -56,6 +56,8 @@ Tracker::Tracker(const CameraIntrinsics& camera, const TrackerConfig& config)
       geometry_(std::make_shared<const FrameGeometry>(camera, config)),
       extractor_(config.orb),
       dynamic_(config.dynamic, config.pose),
+      held_boxes_(config.dynamic.mode == DynamicMode::kNone ? 0.0 : config.dynamic.held_box_s,
+                  config.dynamic.held_box_iou),
       mapper_(std::make_unique<LocalMapper>(map_, geometry_, config)),
       motion_prior_(config.pose),
       refiner_(config.refine) {}
@@ -71,13 +73,14 @@ void Tracker::finish() {
 TrackResult Tracker::track(const TrackerInput& input) {
   Stopwatch watch;
   TrackResult result;
-  Frame frame = makeFrame(input, result);  // ORB, undistortion, depth, exclusion: no map lock needed
+  // The frame's boxes, with the persons the detector found just before and missed now.
+  const std::optional<std::vector<ObjectBox>> boxes = held_boxes_.complete(input.boxes, input.stamp);
+  Frame frame = makeFrame(input, boxes, result);  // ORB, undistortion, depth, exclusion: no map lock needed
   dynamic_ms_ = 0.0;
   position_prior_.reset();
   {
     const ScopedAccumulator timer(dynamic_ms_);
-    dynamic_.observe(frame, input.boxes ? &*input.boxes : nullptr,
-                     last_frame_.features ? &last_frame_ : nullptr);
+    dynamic_.observe(frame, boxes ? &*boxes : nullptr, last_frame_.features ? &last_frame_ : nullptr);
   }
   {
     Stopwatch wait;
@@ -137,9 +140,8 @@ TrackResult Tracker::track(const TrackerInput& input) {
     for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
     if (result.new_keyframe) {
       const ScopedAccumulator timer(dynamic_ms_);
-      result.dynamic_mask =
-          dynamic_.mask(*frame.features, frame.dynamic, input.boxes ? &*input.boxes : nullptr, input.depth,
-                        geometry_->camera.intrinsics().depth_scale);
+      result.dynamic_mask = dynamic_.mask(*frame.features, frame.dynamic, boxes ? &*boxes : nullptr,
+                                          input.depth, geometry_->camera.intrinsics().depth_scale);
     }
     result.dynamic_ms = dynamic_ms_;
   }
@@ -148,14 +150,15 @@ TrackResult Tracker::track(const TrackerInput& input) {
   return result;
 }
 
-Frame Tracker::makeFrame(const TrackerInput& input, TrackResult& result) const {
+Frame Tracker::makeFrame(const TrackerInput& input, const std::optional<std::vector<ObjectBox>>& boxes,
+                         TrackResult& result) const {
   Stopwatch watch;
   cv::Mat gray;
   if (input.image.channels() == 3)
     cv::cvtColor(input.image, gray, cv::COLOR_BGR2GRAY);
   else
     gray = input.image;
-  auto features = buildFeatures(extractor_.extract(gray, sparseRegions(input)), input.depth, *geometry_,
+  auto features = buildFeatures(extractor_.extract(gray, sparseRegions(boxes)), input.depth, *geometry_,
                                 input.keypoint_weight, input.exclusion_mask);
   result.stamp = input.stamp;
   result.seq = input.seq;
@@ -165,12 +168,12 @@ Frame Tracker::makeFrame(const TrackerInput& input, TrackResult& result) const {
   return Frame(input.seq, input.stamp, std::move(features));
 }
 
-SparseRegions Tracker::sparseRegions(const TrackerInput& input) const {
+SparseRegions Tracker::sparseRegions(const std::optional<std::vector<ObjectBox>>& boxes) const {
   const DynamicOptions& d = config_.dynamic;
   SparseRegions sparse;
-  if (!input.boxes || d.box_keypoint_share >= 1.0 || d.mode == DynamicMode::kNone) return sparse;
+  if (!boxes || d.box_keypoint_share >= 1.0 || d.mode == DynamicMode::kNone) return sparse;
   sparse.share = d.box_keypoint_share;
-  for (const ObjectBox& b : *input.boxes)
+  for (const ObjectBox& b : *boxes)
     if (b.level == DynamicLevel::kHigh) sparse.boxes.push_back(b.box);
   return sparse;
 }

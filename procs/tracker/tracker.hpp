@@ -13,6 +13,7 @@
 #include "tracker/dynamic_stage.hpp"
 #include "tracker/frame.hpp"
 #include "tracker/frame_refiner.hpp"
+#include "tracker/held_boxes.hpp"
 #include "tracker/local_mapper.hpp"
 #include "tracker/map.hpp"
 #include "tracker/motion_prior.hpp"
@@ -112,7 +113,8 @@ class Tracker {
   const TrackerConfig& config() const { return config_; }
 
  private:
-  Frame makeFrame(const TrackerInput& input, TrackResult& result) const;
+  Frame makeFrame(const TrackerInput& input, const std::optional<std::vector<ObjectBox>>& boxes,
+                  TrackResult& result) const;
   bool initialise(Frame& frame, TrackResult& result);
   // Priors and box observation into the frame's moving probabilities, then the pose without the
   // dynamic keypoints.
@@ -137,8 +139,8 @@ class Tracker {
   // every frame still waiting. The caller holds the map lock.
   void refineSettledFrames(bool all);
   int countTracked(const Frame& frame) const;
-  // The input's person boxes, where the keypoint budget is spent sparingly (every mode with boxes).
-  SparseRegions sparseRegions(const TrackerInput& input) const;
+  // The frame's person boxes, where the keypoint budget is spent sparingly (every mode with boxes).
+  SparseRegions sparseRegions(const std::optional<std::vector<ObjectBox>>& boxes) const;
   bool inPose(const Frame& frame, std::size_t i) const;
 
   // A tracked frame, relative to its reference keyframe by id: holding the keyframe itself would keep
@@ -160,7 +162,8 @@ class Tracker {
   std::shared_ptr<const FrameGeometry> geometry_;
   OrbExtractor extractor_;
   DynamicStage dynamic_;
-  Map map_;  // declared before the mapper, which uses it
+  HeldBoxes held_boxes_;  // persons the detector missed this frame, found just before
+  Map map_;               // declared before the mapper, which uses it
   std::unique_ptr<LocalMapper> mapper_;
   TrackingState state_ = TrackingState::kInitialising;
   Frame last_frame_;

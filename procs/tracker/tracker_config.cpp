@@ -219,6 +219,8 @@ DynamicOptions dynamicOptions(const Config& c) {
   readAtLeast(c, "stale_box_max_age_s", o.stale_box_max_age_s, 0.0);
   readFraction(c, "stale_box_motion_iou", o.stale_box_motion_iou);
   readAtLeast(c, "stale_box_growth_px_per_s", o.stale_box_growth_px_per_s, 0.0);
+  readAtLeast(c, "held_box_s", o.held_box_s, 0.0);
+  readIn(c, "held_box_iou", o.held_box_iou, 0.01, 1.0);
   return o;
 }
 

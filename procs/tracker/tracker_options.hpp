@@ -194,6 +194,12 @@ struct DynamicOptions {
   double stale_box_max_age_s = 0.5;
   double stale_box_motion_iou = 0.3;
   double stale_box_growth_px_per_s = 0.0;
+  // Every variant with boxes: a person (high-dynamic) box found in two answers in a row and missing from
+  // the next is added to the frame's boxes for up to held_box_s, moved on at the speed those answers
+  // showed, until an answer has it again (same class, intersection over union at least held_box_iou with
+  // the held box where it would be by then). 0: only the detector's boxes (the paper).
+  double held_box_s = 0.5;
+  double held_box_iou = 0.3;
 };
 
 struct TrackerConfig {

@@ -223,6 +223,28 @@ TEST(DynamicScenario, APersonWhoStandsStillStaysKeptOut) {
   expectPeopleKeptOut(geometric, 0.005);
 }
 
+// YOLOv5n at 320 px misses a walking person in some frames (a score just under the threshold) and finds
+// them again a frame or a few later. Each frame without the box is a static observation for the person's
+// keypoints, and keypoints first seen then start at 0.5: both fall under the threshold. Holding a person
+// found in two answers in a row (dynamic.held_box_s) keeps more of them out, and no more static keypoints.
+// When this was written, the paper's variant with the keypoint budget: people 82.3 % kept out against
+// 77.9 %, static 5.3 % against 5.1 %, 3.4 mm both.
+TEST(DynamicScenario, PeopleTheDetectorMissesForAFewFramesAreHeld) {
+  const Adjust detector_only = [](capture::SyntheticSceneConfig&, TrackerConfig& config) {
+    config.dynamic.held_box_s = 0.0;
+  };
+  const double share = TrackerConfig{}.dynamic.box_keypoint_share;
+  const Score held = run("people_walking", DynamicMode::kPaper, share);
+  const Score without = run("people_walking", DynamicMode::kPaper, share, {}, detector_only);
+  EXPECT_GT(held.recall(held.known_out, held.known_on),
+            without.recall(without.known_out, without.known_on) + 0.02)
+      << "held boxes should keep more of the people out";
+  EXPECT_LE(held.recall(held.static_out, held.static_on),
+            without.recall(without.static_out, without.static_on) + 0.01);
+  EXPECT_LT(held.ate, 0.005);
+  EXPECT_EQ(held.lost, 0);
+}
+
 // Real time: each answer 3 frames (0.1 s) late, every frame observed with a stand-in. The default still
 // keeps most of the people out, few static keypoints, and the trajectory within 5 mm; moving the stand-ins on
 // at the speed their boxes showed keeps more of the people out than leaving them where they were. When this

@@ -153,6 +153,8 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.stale_box_max_age_s", d.stale_box_max_age_s);
   put("dynamic.stale_box_motion_iou", d.stale_box_motion_iou);
   put("dynamic.stale_box_growth_px_per_s", d.stale_box_growth_px_per_s);
+  put("dynamic.held_box_s", d.held_box_s);
+  put("dynamic.held_box_iou", d.held_box_iou);
 }
 
 std::map<std::string, std::string> fieldsOf(const TrackerConfig& c) {
@@ -234,6 +236,8 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"dynamic: {mode: bayes}", "dynamic.mode"},
       {"dynamic: {lambda: 1.2}", "dynamic.lambda"},
       {"dynamic: {stale_box_motion_iou: 1.5}", "dynamic.stale_box_motion_iou"},
+      {"dynamic: {held_box_iou: 0}", "dynamic.held_box_iou"},
+      {"dynamic: {held_box_s: -1}", "dynamic.held_box_s"},
       {"dynamic: {lambda: 0.4, omega: 0.5}", "dynamic.omega"},
       {"dynamic: {threshold: -1}", "dynamic.threshold"},
       {"dynamic: {refine_band_m: 0}", "dynamic.refine_band_m"},
