@@ -74,7 +74,8 @@ TrackResult Tracker::track(const TrackerInput& input) {
   Stopwatch watch;
   TrackResult result;
   // The frame's boxes, with the persons the detector found just before and missed now.
-  const std::optional<std::vector<ObjectBox>> boxes = held_boxes_.complete(input.boxes, input.stamp);
+  const std::optional<std::vector<ObjectBox>> boxes =
+      input.boxes_stand_in ? input.boxes : held_boxes_.complete(input.boxes, input.stamp);
   Frame frame = makeFrame(input, boxes, result);  // ORB, undistortion, depth, exclusion: no map lock needed
   dynamic_ms_ = 0.0;
   position_prior_.reset();

@@ -36,6 +36,9 @@ struct TrackerInput {
   // The detector's boxes for this frame (distorted pixels), when they came: the dynamic stage's
   // observation. Without them the moving probabilities are carried on from the matches.
   std::optional<std::vector<ObjectBox>> boxes;
+  // The boxes are an earlier frame's answer standing in for this frame's (real time, stand_in_boxes.hpp):
+  // they say nothing new about who the detector found, so no box is held or let go on their word.
+  bool boxes_stand_in = false;
 };
 
 // After a gap, whether the motion model's pose was checked against the reference keyframe's

@@ -103,6 +103,7 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
     if (lag.frames > 0) {
       const auto at = static_cast<std::size_t>(i), back = static_cast<std::size_t>(lag.frames);
       in.boxes = laggedStandIn(boxes, stamps, at, back, config.dynamic);
+      in.boxes_stand_in = true;
       if (at >= back) tracker.applyLateBoxes(i - lag.frames, boxes[at - back]);
     }
     const TrackResult r = tracker.track(in);

@@ -170,6 +170,7 @@ void lagBoxes(OfflineFrame& frame, std::size_t i, std::size_t lag,
               const DynamicOptions& dynamic) {
   if (lag == 0 || i >= all.size()) return;
   frame.boxes = laggedStandIn(all, stamps, i, lag, dynamic);
+  frame.boxes_stand_in = true;
   if (i >= lag) frame.late = OfflineFrame::LateBoxes{static_cast<int>(lag), all[i - lag]};
 }
 

@@ -23,6 +23,7 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
     input.depth = frame->depth;
     if (options.exclude_movers) input.exclusion_mask = frame->mover_mask;
     input.boxes = frame->boxes;
+    input.boxes_stand_in = frame->boxes_stand_in;
     if (frame->late && input.seq >= frame->late->frames_back)
       tracker.applyLateBoxes(input.seq - frame->late->frames_back, frame->late->boxes);
     TrackResult r = tracker.track(input);

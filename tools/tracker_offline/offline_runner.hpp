@@ -27,6 +27,7 @@ struct OfflineFrame {
     std::vector<ObjectBox> boxes;
   };
   std::optional<LateBoxes> late;
+  bool boxes_stand_in = false;  // boxes: an earlier frame's answer standing in for this one's (real time)
 };
 // Returns the next frame, or nullopt at the end.
 using FrameProvider = std::function<std::optional<OfflineFrame>()>;

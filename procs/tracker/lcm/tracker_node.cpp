@@ -235,6 +235,7 @@ void TrackerNode::process(const Queued& frame) {
   input.depth = depth;
   FrameBoxChoice choice = boxesFor(msg);
   input.boxes = std::move(choice.boxes);
+  input.boxes_stand_in = input.boxes && !choice.own;
   const TrackResult r = tracker_->track(input);
   timing_.add(r.processing_ms);
   lost_ += r.state == TrackingState::kLost;
