@@ -228,10 +228,11 @@ bool Tracker::needNewKeyFrame(const Frame& frame) const {
     else
       ++untracked_close;
   }
-  const bool need_close = tracked_close < k.close_tracked_max && untracked_close > k.close_untracked_min;
+  const int64_t since = frame.seq - last_keyframe_seq_;
+  const bool need_close = tracked_close < k.close_tracked_max && untracked_close > k.close_untracked_min &&
+                          since >= k.close_min_frames;
   const int inliers = countTracked(frame);
   const double ratio = num_kfs < 2 ? 0.4 : k.ref_ratio;
-  const int64_t since = frame.seq - last_keyframe_seq_;
   const bool c1a = since >= k.max_frames;
   const bool c1b = since >= k.min_frames && mapper_->idle();
   const bool c1c = inliers < 0.25 * ref_matches || need_close;

@@ -132,6 +132,7 @@ KeyframeOptions keyframeOptions(const Config& c) {
   readFraction(c, "ref_ratio", o.ref_ratio);
   readAtLeast(c, "close_tracked_max", o.close_tracked_max, 0);
   readAtLeast(c, "close_untracked_min", o.close_untracked_min, 0);
+  readAtLeast(c, "close_min_frames", o.close_min_frames, 1);
   readAtLeast(c, "new_points_min", o.new_points_min, 0);
   readAtLeast(c, "revisit_distance_m", o.revisit_distance_m, 0.0);
   readAtLeast(c, "revisit_angle_deg", o.revisit_angle_deg, 0.0);

@@ -91,6 +91,7 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("keyframes.ref_ratio", k.ref_ratio);
   put("keyframes.close_tracked_max", k.close_tracked_max);
   put("keyframes.close_untracked_min", k.close_untracked_min);
+  put("keyframes.close_min_frames", k.close_min_frames);
   put("keyframes.new_points_min", k.new_points_min);
   put("keyframes.revisit_distance_m", k.revisit_distance_m);
   put("keyframes.revisit_angle_deg", k.revisit_angle_deg);
@@ -229,6 +230,7 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"keyframes: {ref_ratio: 1.5}", "keyframes.ref_ratio"},
       {"keyframes: {revisit_angle_deg: 200}", "keyframes.revisit_angle_deg"},
       {"keyframes: {revisit_distance_m: -1}", "keyframes.revisit_distance_m"},
+      {"keyframes: {close_min_frames: 0}", "keyframes.close_min_frames"},
       {"mapping: {queue_capacity: 0}", "mapping.queue_capacity"},
       {"mapping: {point_found_ratio: -0.1}", "mapping.point_found_ratio"},
       {"relocalization: {ransac_reprojection_px: 0}", "relocalization.ransac_reprojection_px"},
