@@ -287,8 +287,9 @@ TEST(DynamicScenario, AnUnknownRigidMoverDoesNotCarryThePose) {
 // keypoints, the boxes moved on, the points were not found again and the keypoints called for close
 // structure once more, so nearly every frame made a keyframe (keyframes.close_*; 86 in 300 frames, tracking
 // p95 173 ms). Waiting close_min_frames frames since the last keyframe gives its points the chance to be
-// found again first: 46 keyframes and 5.0 mm against 6.5 on that scene; over 21 synthetic sequences
-// (bmp-synth, seeds 1-8) the crowd's error went down in 7 of 8 and the others' moved by -0.2 to +0.5 mm.
+// found again first: 46 keyframes and 5.0 mm against 6.5 on that scene (bmp-bench-tracker, 300 frames). Over
+// 21 synthetic sequences (bmp-synth: `crowd` seeds 1-8, `static` 1-3, `people_walking` 1-4, `unknown_mover`
+// 1-3, `person_stops` 1-2) the crowd's error went down in 7 of 8 and the others' moved by -0.2 to +0.5 mm.
 TEST(DynamicScenario, AMoverTheDetectorDoesNotKnowDoesNotMakeAKeyframeOfEveryFrame) {
   const auto every = [](capture::SyntheticSceneConfig&, TrackerConfig& c) {
     c.keyframes.close_min_frames = 1;
