@@ -1,5 +1,6 @@
 #include "tracker/frame_log.hpp"
 
+#include <cmath>
 #include <iomanip>
 
 namespace bmp::tracker {
@@ -7,7 +8,7 @@ namespace bmp::tracker {
 const char* FrameLog::columns() {
   return "stamp\tseq\tstate\tkeypoints\ttracked\tpose_source\tfirst_inliers\tdynamic\texcluded\tmap_points\t"
          "keyframes\treference_kf\tnew_kf\tsince_last_ms\tframes_missed\tboxes\tgap_recheck\ttrack_ms\t"
-         "extract_ms\tdynamic_ms\tlock_wait_ms";
+         "extract_ms\tdynamic_ms\tlock_wait_ms\tposition_std_mm";
 }
 
 FrameLog::FrameLog(const std::string& path) : path_(path), out_(path) {
@@ -25,7 +26,13 @@ void FrameLog::append(const TrackResult& r, const FrameLogContext& c) {
        << (r.new_keyframe ? r.new_keyframe->id : -1) << '\t' << std::setprecision(1)
        << r.since_last_s * 1000.0 << '\t' << c.frames_missed << '\t' << c.boxes << '\t'
        << toString(r.gap_recheck) << '\t' << std::setprecision(2) << r.processing_ms << '\t' << r.extract_ms
-       << '\t' << r.dynamic_ms << '\t' << r.lock_wait_ms << std::endl;
+       << '\t' << r.dynamic_ms << '\t' << r.lock_wait_ms << '\t';
+  // Not tracked, or a pose its inliers do not determine: no figure.
+  if (std::isfinite(r.position_std_m))
+    out_ << std::setprecision(1) << r.position_std_m * 1000.0;
+  else
+    out_ << '-';
+  out_ << std::endl;
   if (!out_) throw FrameLogError(path_ + ": write failed");
 }
 

@@ -1,5 +1,7 @@
 #include "tracker/frame_pose.hpp"
 
+#include <limits>
+
 #include "tracker/key_frame.hpp"
 #include "tracker/map_point.hpp"
 #include "tracker/pose_consensus.hpp"
@@ -39,12 +41,16 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
     obs.push_back(o);
     index.push_back(i);
   }
-  if (obs.size() < 3) return 0;
+  if (obs.size() < 3) {
+    frame.position_std_m = std::numeric_limits<double>::infinity();
+    return 0;
+  }
   SE3 T_cam_world = frame.T_cam_world();
   const PoseCamera camera{g.fx, g.fy, g.cx, g.cy, g.bf};
   T_cam_world = findConsensusPose(T_cam_world, obs, camera, options).T_cam_world;
   const int inliers = optimizePose(T_cam_world, obs, camera, options, prior);
   frame.setPose(T_cam_world.inverse());
+  frame.position_std_m = positionStd(T_cam_world, obs, camera);
   for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;
   return inliers;
 }

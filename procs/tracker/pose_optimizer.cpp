@@ -1,10 +1,13 @@
 #include "tracker/pose_optimizer.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace bmp::tracker {
@@ -198,6 +201,36 @@ int solveRounds(SE3& T, std::vector<PoseObservation>& obs, const PoseCamera& cam
 }
 
 }  // namespace
+
+double positionStd(const SE3& T, const std::vector<PoseObservation>& obs, const PoseCamera& camera) {
+  // A weighted least-squares estimate: its covariance is A^-1 B A^-1 with A = sum w J^T J (what the solve
+  // inverts) and B = sum w^2 J^T J (the noise each residual brings), so a down-weighted young point adds its
+  // little information, no more, no less.
+  Mat6 A = Mat6::Zero(), B = Mat6::Zero();
+  double r[3];
+  Eigen::Matrix<double, 3, 6> J;
+  int used = 0;
+  for (const auto& o : obs) {
+    if (o.outlier || o.weight <= 0.0) continue;
+    const Active a{&o, std::sqrt(o.information), o.weight, 0.0};
+    const int rows = residualAndJacobian(T, a, camera, r, &J);
+    if (rows == 0) continue;
+    const Mat6 JtJ = J.topRows(rows).transpose() * J.topRows(rows);
+    A.noalias() += o.weight * JtJ;
+    B.noalias() += o.weight * o.weight * JtJ;
+    ++used;
+  }
+  if (used < 3) return std::numeric_limits<double>::infinity();
+  const Eigen::FullPivLU<Mat6> lu(A);
+  if (!lu.isInvertible()) return std::numeric_limits<double>::infinity();
+  const Mat6 A_inv = lu.inverse();
+  // The centre c = -R^T t moves by -R^T v under the increment (omega, v): its covariance is the translation
+  // block's turned by R^T, with the same eigenvalues.
+  const Eigen::Matrix3d C = (A_inv * B * A_inv).bottomRightCorner<3, 3>();
+  const double worst =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(0.5 * (C + C.transpose())).eigenvalues()(2);
+  return worst > 0.0 && std::isfinite(worst) ? std::sqrt(worst) : std::numeric_limits<double>::infinity();
+}
 
 int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& obs, const PoseCamera& camera,
                  const PoseOptimizerOptions& options, const PositionPrior* prior) {

@@ -33,6 +33,14 @@ struct PositionPrior {
 int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& observations, const PoseCamera& camera,
                  const PoseOptimizerOptions& options, const PositionPrior* prior = nullptr);
 
+// How well the inlier observations alone pin the camera's position: the standard deviation (metres) of the
+// camera centre along its worst-determined direction, from the inverse of the observations' information
+// (each keypoint at its level's sigma and its cost weight; no prior). Far points in one band of the image
+// leave a sideways shift with a turn barely seen, and this says by how much. Infinity when the inliers do
+// not determine the pose.
+double positionStd(const SE3& T_cam_world, const std::vector<PoseObservation>& observations,
+                   const PoseCamera& camera);
+
 // Squared whitened error of one observation under a pose (the statistic compared with chi2).
 double poseChi2(const SE3& T_cam_world, const PoseObservation& obs, const PoseCamera& camera);
 

@@ -120,6 +120,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
         for (std::size_t i = 0; i < frame.points.size(); ++i) result.keypoint_in_pose[i] = inPose(frame, i);
         result.num_tracked = static_cast<int>(
             std::count(result.keypoint_in_pose.begin(), result.keypoint_in_pose.end(), uint8_t{1}));
+        result.position_std_m = frame.position_std_m;
         if (needNewKeyFrame(frame)) insertKeyFrame(frame, result);
       } else {
         state_ = TrackingState::kLost;

@@ -1,6 +1,7 @@
 #pragma once
 // The tracker: one call per RGB-D frame. Read Tracker::track first; it is the algorithm's summary.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -59,6 +60,10 @@ struct TrackResult {
   int num_tracked = 0;   // inlier matches to map points used in the pose
   int num_excluded = 0;  // keypoints excluded by the weight hook or mask
   int num_dynamic = 0;   // keypoints the dynamic stage kept out of the pose (P(dynamic) over threshold)
+  // Tracked frames: how well the pose's inliers pin the camera's position, the standard deviation (m) of its
+  // worst-determined direction at the keypoints' level sigmas (pose_optimizer.hpp positionStd); infinity
+  // when not tracked.
+  double position_std_m = std::numeric_limits<double>::infinity();
   int num_map_points = 0;
   int num_keyframes = 0;
   int64_t reference_keyframe_id = -1;

@@ -2,6 +2,7 @@
 // the tracker in reproducible mode (mapping inline), scored against the scene's per-mover masks.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -9,6 +10,7 @@
 
 #include "../capture_synthetic/scenario_test_util.hpp"
 #include "bmp/common/config.hpp"
+#include "bmp/common/timing.hpp"
 #include "detector/detector.hpp"
 #include "eval/ate.hpp"
 #include "tracker/stand_in_boxes.hpp"
@@ -27,6 +29,9 @@ struct Score {
   long still_on = 0, still_out = 0;      // of those, on a person standing still
   long unknown_on = 0, unknown_out = 0;  // on the unknown mover (a textured box)
   long static_on = 0, static_out = 0;    // on the static scene
+  // Each tracked frame's position std (TrackResult::position_std_m), with over half the view on movers and
+  // with less than a tenth (after the first second).
+  TimingStats position_std_covered, position_std_clear;
   double recall(long out, long on) const { return on > 0 ? static_cast<double>(out) / on : 1.0; }
 };
 
@@ -111,6 +116,11 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
     s.lost += r.state == TrackingState::kLost;
     s.keyframes += r.new_keyframe.has_value();
     if (i >= 30) count(r, f, s);  // after the first second: the probabilities need a few frames of history
+    if (i >= 30 && std::isfinite(r.position_std_m)) {
+      const double covered = static_cast<double>(cv::countNonZero(f.mover_ids)) / f.mover_ids.total();
+      if (covered > 0.5) s.position_std_covered.add(r.position_std_m);
+      if (covered < 0.1) s.position_std_clear.add(r.position_std_m);
+    }
   }
   tracker.finish();
   s.ate = eval::computeAte(scene.groundTruth(), tracker.trajectory()).stats.rmse;
@@ -122,6 +132,13 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
       100 * s.recall(s.known_out, s.known_on), s.known_on, 100 * s.recall(s.unknown_out, s.unknown_on),
       s.unknown_on, 100 * s.recall(s.static_out, s.static_on), s.static_on,
       100 * s.recall(s.still_out, s.still_on), s.still_on);
+  if (!s.position_std_covered.empty())
+    std::printf(
+        "  position std median / p95 %.1f / %.1f mm in %zu frames over half covered, %.1f / %.1f mm in "
+        "%zu under a tenth\n",
+        s.position_std_covered.median() * 1000, s.position_std_covered.p95() * 1000,
+        s.position_std_covered.count(), s.position_std_clear.median() * 1000,
+        s.position_std_clear.p95() * 1000, s.position_std_clear.count());
   return s;
 }
 
@@ -164,6 +181,12 @@ TEST(DynamicScenario, CrowdIsKeptOutByTheDefaultVariantAndItsKeypointBudgetHelps
   const Score budget = run("crowd", DynamicMode::kGeometric, TrackerConfig{}.dynamic.box_keypoint_share);
   EXPECT_LT(budget.ate, 0.012);
   EXPECT_LT(budget.ate, 0.8 * geometric.ate) << "the static scene's keypoints should hold the pose better";
+  // What the crowd leaves of the room (a band above the heads, gaps between people) pins the position less
+  // well than the room did, and the frame log's position_std_mm says so: its worst frames 14.0 mm against
+  // 5.2 (95th percentiles) when this was written.
+  ASSERT_FALSE(budget.position_std_covered.empty());
+  ASSERT_FALSE(budget.position_std_clear.empty());
+  EXPECT_GT(budget.position_std_covered.p95(), 2.0 * budget.position_std_clear.p95());
   EXPECT_LE(budget.recall(budget.static_out, budget.static_on), 0.10);
   EXPECT_EQ(budget.lost, 0);
 }

@@ -43,6 +43,7 @@ TrackResult sample() {
   r.extract_ms = 5.2;
   r.dynamic_ms = 0.6;
   r.lock_wait_ms = 0.0;
+  r.position_std_m = 0.01234;
   return r;
 }
 
@@ -87,12 +88,14 @@ TEST(FrameLog, OneLinePerFrameUnderTheHeaderColumns) {
                                              "7.84",
                                              "5.20",
                                              "0.60",
-                                             "0.00"};
+                                             "0.00",
+                                             "12.3"};
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(lines[0][i], expected[i]) << names[i];
   EXPECT_EQ(lines[1][2], "LOST");
-  EXPECT_EQ(lines[1][5], "none");  // a frame not tracked has no pose source ...
-  EXPECT_EQ(lines[1][6], "12");    // ... but says how many inliers its first pose kept
-  EXPECT_EQ(lines[1][12], "-1");   // no keyframe made
+  EXPECT_EQ(lines[1][5], "none");   // a frame not tracked has no pose source ...
+  EXPECT_EQ(lines[1][6], "12");     // ... but says how many inliers its first pose kept
+  EXPECT_EQ(lines[1][12], "-1");    // no keyframe made
+  EXPECT_EQ(lines[1].back(), "-");  // and no position spread
 }
 
 // A process killed between frames leaves every line it wrote: each is on disk before append returns.

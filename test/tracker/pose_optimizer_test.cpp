@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <random>
+
+#include <Eigen/Eigenvalues>
 
 #include "tracker/frame_pose.hpp"
 #include "tracker/key_frame.hpp"
@@ -209,6 +213,83 @@ TEST(TrackerPoseOptimizer, PositionPriorThePoseCannotMeetIsDropped) {
   const Eigen::Vector3d free = wallPositionError(rng, nullptr);
   const Eigen::Vector3d gated = wallPositionError(same, &far_off);
   EXPECT_LT((gated - free).norm(), 1e-6);
+}
+
+// Keypoints with depth at 1 px noise, in the true camera frame (world = camera, centre at the origin):
+// `count` points at 4-5 m in a band at the top of the image (what a crowd in front leaves of a room), or
+// spread over the view at 1-5 m.
+std::vector<PoseObservation> scenePoints(std::mt19937& rng, int count, bool band, const PoseCamera& cam) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::normal_distribution<double> pixel_noise(0.0, 1.0);
+  std::vector<PoseObservation> obs;
+  for (int i = 0; i < count; ++i) {
+    const double z = band ? 4.0 + u01(rng) : 1.0 + 4.0 * u01(rng);
+    const double u = 640.0 * u01(rng), v = band ? 100.0 * u01(rng) : 480.0 * u01(rng);
+    const Eigen::Vector3d p((u - cam.cx) * z / cam.fx, (v - cam.cy) * z / cam.fy, z);
+    PoseObservation o;
+    o.p_world = p;
+    o.uv = Eigen::Vector2d(u + pixel_noise(rng), v + pixel_noise(rng));
+    o.u_right = o.uv.x() - cam.bf / z + pixel_noise(rng);
+    obs.push_back(o);
+  }
+  return obs;
+}
+
+Eigen::Vector3d centre(const SE3& T_cam_world) {
+  return -(T_cam_world.rotation().transpose() * T_cam_world.translation());
+}
+
+// The figure is what the pose's own spread turns out to be: solved again and again with fresh noise, the
+// camera centre scatters along its worst direction by about the predicted standard deviation.
+TEST(TrackerPoseOptimizer, PositionStdIsTheSpreadOfTheSolvedPosition) {
+  const PoseCamera cam{525.0, 525.0, 319.5, 239.5, 525.0 * 0.08};
+  std::mt19937 rng(11);
+  constexpr int kTrials = 200;
+  std::vector<Eigen::Vector3d> centres;
+  double predicted = 0.0;
+  for (int t = 0; t < kTrials; ++t) {
+    std::vector<PoseObservation> obs = scenePoints(rng, 150, true, cam);
+    SE3 T = SE3::Identity();
+    optimizePose(T, obs, cam, PoseOptimizerOptions{});
+    centres.push_back(centre(T));
+    predicted += positionStd(T, obs, cam) / kTrials;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& c : centres) mean += c / kTrials;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& c : centres) cov += (c - mean) * (c - mean).transpose() / (kTrials - 1);
+  const double measured = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvalues()(2));
+  std::printf("far band, 150 points: predicted %.1f mm, measured over %d solves %.1f mm\n", predicted * 1e3,
+              kTrials, measured * 1e3);
+  EXPECT_GT(measured, 0.75 * predicted);
+  EXPECT_LT(measured, 1.33 * predicted);
+}
+
+// A far band pins the position several times worse than the same number of keypoints over the view, and
+// four times the keypoints halve it.
+TEST(TrackerPoseOptimizer, PositionStdGrowsWhenTheStaticPointsAreAFarBand) {
+  const PoseCamera cam{525.0, 525.0, 319.5, 239.5, 525.0 * 0.08};
+  std::mt19937 rng(12);
+  const SE3 truth = SE3::Identity();
+  const double band = positionStd(truth, scenePoints(rng, 150, true, cam), cam);
+  const double spread = positionStd(truth, scenePoints(rng, 150, false, cam), cam);
+  const double band_x4 = positionStd(truth, scenePoints(rng, 600, true, cam), cam);
+  std::printf("150 points: far band %.1f mm, over the view %.1f mm; 600 in the band %.1f mm\n", band * 1e3,
+              spread * 1e3, band_x4 * 1e3);
+  EXPECT_GT(band, 3.0 * spread);
+  EXPECT_NEAR(band_x4 / band, 0.5, 0.1);
+}
+
+TEST(TrackerPoseOptimizer, PositionStdCountsInliersOnlyAndNeedsThree) {
+  const PoseCamera cam{525.0, 525.0, 319.5, 239.5, 525.0 * 0.08};
+  std::mt19937 rng(13);
+  std::vector<PoseObservation> obs = scenePoints(rng, 100, false, cam);
+  const double all = positionStd(SE3::Identity(), obs, cam);
+  for (std::size_t i = 50; i < obs.size(); ++i) obs[i].outlier = true;
+  const double half = positionStd(SE3::Identity(), obs, cam);
+  EXPECT_GT(half, 1.2 * all);
+  for (std::size_t i = 2; i < 50; ++i) obs[i].outlier = true;
+  EXPECT_TRUE(std::isinf(positionStd(SE3::Identity(), obs, cam)));
 }
 
 TEST(MotionPrior, PredictsFromTheSmoothedVelocityWithinHalfAccelerationTimesDtSquared) {

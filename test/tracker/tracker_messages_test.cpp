@@ -49,6 +49,7 @@ TEST(TrackerMessages, PoseAnswersItsFrameWithStateAndCounts) {
   r.num_map_points = 9000;
   r.reference_keyframe_id = 7;
   r.processing_ms = 9.5;
+  r.position_std_m = 0.0042;
   const slam_pose_t p = toPoseMessage(frame, r);
   EXPECT_EQ(p.utime, frame.utime);
   EXPECT_EQ(p.seq, 12);
@@ -59,6 +60,7 @@ TEST(TrackerMessages, PoseAnswersItsFrameWithStateAndCounts) {
   EXPECT_EQ(p.num_map_points, 9000);
   EXPECT_EQ(p.reference_keyframe_id, 7);
   EXPECT_FLOAT_EQ(p.processing_ms, 9.5f);
+  EXPECT_FLOAT_EQ(p.position_std_m, 0.0042f);
   EXPECT_LT((fromMsg(p.T_world_cam).matrix() - r.T_world_cam.matrix()).norm(), 1e-9);
 }
 
@@ -71,6 +73,14 @@ TEST(TrackerMessages, SkippedFrameIsAnsweredWithItsSeq) {
   EXPECT_EQ(p.state, +slam_pose_t::STATE_SKIPPED);
   EXPECT_EQ(p.reference_keyframe_id, -1);
   EXPECT_EQ(p.note, "colour image: not a PNG");
+  EXPECT_EQ(p.position_std_m, -1.0f);
+}
+
+TEST(TrackerMessages, AFrameNotTrackedHasNoPositionStd) {
+  const Images im;
+  TrackResult lost;
+  lost.state = TrackingState::kLost;  // position_std_m stays infinite
+  EXPECT_EQ(toPoseMessage(frameMessage(im.color, im.depth, true), lost).position_std_m, -1.0f);
 }
 
 TEST(TrackerMessages, KeyFrameForwardsFileBytesUntouched) {

@@ -154,6 +154,9 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
     EXPECT_GT(poses[i].processing_ms, 0.0f);
     if (i > 0) {
       EXPECT_GT(poses[i].num_tracked, 100) << "frame " << i;
+      // Hundreds of inliers over the room: millimetres.
+      EXPECT_GT(poses[i].position_std_m, 0.0f) << "frame " << i;
+      EXPECT_LT(poses[i].position_std_m, 0.02f) << "frame " << i;
     }
   }
   ASSERT_GE(kfs.size(), 1u);

@@ -1,6 +1,7 @@
 #include "bench_run.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -70,6 +71,7 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
 // Per-frame figures kept while tracking (the frames' results are not kept: long runs measure memory).
 struct FrameTimes {
   bmp::TimingStats extract, wait, dynamic;
+  bmp::TimingStats position_std_mm;  // tracked frames whose inliers determine the pose
 };
 
 // --score-masks: the dynamic stage against DIR/mask/ from this many seconds into the sequence on (the
@@ -110,6 +112,9 @@ void printRunSummary(const OfflineResult& result, const FrameTimes& times, long 
   std::printf("extract ms median %.2f (ORB + undistortion + depth, part of track)\n", times.extract.median());
   std::printf("dynamic ms median %.2f, p95 %.2f (the dynamic stage, part of track)\n", times.dynamic.median(),
               times.dynamic.p95());
+  if (!times.position_std_mm.empty())
+    std::printf("position std mm  median %.1f, p95 %.1f, max %.1f (how well each frame's inliers pin it)\n",
+                times.position_std_mm.median(), times.position_std_mm.p95(), times.position_std_mm.max());
 }
 
 // Each associated frame's position error after the global alignment: where the trajectory went wrong.
@@ -317,6 +322,7 @@ int runBenchTracker(const bmp::ArgParser& args) {
     times->extract.add(r.extract_ms);
     times->wait.add(r.lock_wait_ms);
     times->dynamic.add(r.dynamic_ms);
+    if (std::isfinite(r.position_std_m)) times->position_std_mm.add(r.position_std_m * 1000.0);
     report(r, f);
     if (score) {
       if (!scored->first_stamp) scored->first_stamp = f.stamp;

@@ -114,7 +114,7 @@ void walk(Reader& r, const detection_t*) {
 void walk(Reader& r, const slam_pose_t*) {
   r.skip(2 * 8, "slam_pose_t stamps");
   pose(r);
-  r.skip(1 + 4 * 4 + 8 + 4, "slam_pose_t counts");
+  r.skip(1 + 4 * 4 + 8 + 4 + 4, "slam_pose_t counts");
   r.string("slam_pose_t.note");
 }
 void walk(Reader& r, const keyframe_t*) {

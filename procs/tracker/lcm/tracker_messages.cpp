@@ -1,5 +1,7 @@
 #include "tracker/lcm/tracker_messages.hpp"
 
+#include <cmath>
+
 #include "bmp/lcm/conversions.hpp"
 
 namespace bmp::tracker {
@@ -31,6 +33,7 @@ slam_pose_t toPoseMessage(const rgbd_frame_t& frame, const TrackResult& r) {
   out.num_map_points = r.num_map_points;
   out.reference_keyframe_id = r.reference_keyframe_id;
   out.processing_ms = static_cast<float>(r.processing_ms);
+  out.position_std_m = std::isfinite(r.position_std_m) ? static_cast<float>(r.position_std_m) : -1.0f;
   return out;
 }
 
@@ -42,6 +45,7 @@ slam_pose_t toSkippedPoseMessage(const rgbd_frame_t& frame, const std::string& r
   out.T_world_cam = toMsg(SE3::Identity());
   out.state = slam_pose_t::STATE_SKIPPED;
   out.reference_keyframe_id = -1;
+  out.position_std_m = -1.0f;
   return out;
 }
 
