@@ -69,6 +69,28 @@ TEST(evalFrameLog, AMalformedLineIsNamedByFileAndLine) {
   EXPECT_THROW(readFrameLog((dir / "missing.tsv").string()), EvalError);
 }
 
+// bmp-tracker's log since the position_std_mm column: read where there is a figure, none for '-'; a log from
+// before the column (kHeader above) reads as before, with none.
+TEST(evalFrameLog, ReadsThePositionStdWhereTheLogHasIt) {
+  const auto dir = bmp::test::scratchDir("frame_log_std");
+  std::string header = kHeader;
+  header.insert(header.size() - 1, "\tposition_std_mm");
+  auto line = [](const std::string& base, const std::string& std_mm) {
+    return base.substr(0, base.size() - 1) + "\t" + std_mm + "\n";
+  };
+  const std::vector<FrameLogRow> rows =
+      readFrameLog(write(dir, "frames.tsv",
+                         header + line(frameLine(1.0, 0, "OK", 300, "motion", 280, 0, 9.0), "3.4") +
+                             line(frameLine(1.1, 1, "LOST", 0, "none", 8, 0, 9.0), "-")));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(rows[0].position_std_mm, 3.4);
+  EXPECT_LT(rows[1].position_std_mm, 0.0);
+  const std::vector<FrameLogRow> old =
+      readFrameLog(write(dir, "old.tsv", kHeader + frameLine(1.0, 0, "OK", 300, "motion", 280, 0, 9.0)));
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_LT(old[0].position_std_mm, 0.0);
+}
+
 TEST(evalFrameLog, PlotIsAPngOfPlausibleSize) {
   const auto dir = bmp::test::scratchDir("frame_log_plot");
   std::string text = kHeader;

@@ -30,10 +30,10 @@ ArgParser makeEvalParser() {
   args.addOption("json", "FILE", "also write the results as JSON");
   args.addOption("plot-dir", "DIR",
                  "write PNG plots there (created if needed): <label>_trajectory.png, <label>_errors.png");
-  args.addOption(
-      "frame-log", "FILE",
-      "the tracker's per-frame log (bmp-tracker --frame-log); with --plot-dir also "
-      "<label>_frames.png: inliers, first poses' sources, missed frames and tracking time over time");
+  args.addOption("frame-log", "FILE",
+                 "the tracker's per-frame log (bmp-tracker --frame-log); with --plot-dir also "
+                 "<label>_frames.png: inliers, first poses' sources, missed frames, position std and "
+                 "tracking time over time");
   args.addOption("aligned", "FILE", "write the whole estimate aligned to the ground truth (TUM format)");
   args.addOption("label", "NAME",
                  "name of the run, used in titles and plot file names (default: the --est file name "

@@ -1,6 +1,7 @@
 #include "eval/frame_log_plot.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -24,6 +25,7 @@ const cv::Scalar kRelocColor(200, 40, 200);
 const cv::Scalar kMissedColor(40, 40, 220);
 const cv::Scalar kTimeColor(60, 60, 60);
 const cv::Scalar kPeriodColor(40, 40, 200);
+const cv::Scalar kStdColor(160, 80, 0);
 
 std::vector<std::string> splitTabs(const std::string& line) {
   std::vector<std::string> out;
@@ -45,6 +47,38 @@ cv::Scalar sourceColor(const std::string& source) {
   if (source == "reference") return kReferenceColor;
   if (source == "relocalisation") return kRelocColor;
   return kMotionColor;
+}
+
+// Each tracked frame's position std: millimetres in an open room, centimetres where the static scene left in
+// view is a far band. The scale stops at kStdAxisMaxMm so that one nearly unpinned frame does not flatten
+// the rest; those beyond it are drawn at the top.
+constexpr double kStdAxisMaxMm = 50.0;
+
+void plotPositionStd(cv::Mat& image, const cv::Rect& area, const Range& t, double t0,
+                     const std::vector<FrameLogRow>& rows) {
+  std::vector<double> values;
+  for (const FrameLogRow& r : rows)
+    if (r.position_std_mm >= 0.0) values.push_back(r.position_std_mm);
+  const double top =
+      values.empty() ? 10.0 : std::min(kStdAxisMaxMm, *std::max_element(values.begin(), values.end()));
+  PlotPanel panel(image, area, t, {0.0, std::max(top, 1.0) * 1.1});
+  panel.drawAxes("time since the first frame [s]", "position std [mm]");
+  std::vector<cv::Point2d> line;
+  for (const FrameLogRow& r : rows) {
+    if (r.position_std_mm < 0.0) continue;
+    line.emplace_back(r.stamp - t0, std::min(r.position_std_mm, kStdAxisMaxMm));
+  }
+  panel.polyline(line, kStdColor, 1);
+  std::string heading = "position std per frame (worst direction, from its inliers alone)";
+  if (values.empty()) {
+    heading += ": not in this log";
+  } else {
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    char median[64];
+    std::snprintf(median, sizeof(median), ", median %.1f mm", values[values.size() / 2]);
+    heading += median;
+  }
+  putTextCentered(image, heading, {area.x + area.width / 2, area.y - 16}, 0.55, 1);
 }
 
 }  // namespace
@@ -82,15 +116,20 @@ std::vector<FrameLogRow> readFrameLog(const std::string& path) {
     r.first_inliers = parse<int>(field("first_inliers"), where);
     r.frames_missed = parse<int>(field("frames_missed"), where);
     r.track_ms = parse<double>(field("track_ms"), where);
+    if (column.count("position_std_mm")) {  // logs from before the column have none
+      const std::string& std_mm = field("position_std_mm");
+      if (std_mm != "-") r.position_std_mm = parse<double>(std_mm, where);
+    }
     rows.push_back(r);
   }
   return rows;
 }
 
 void plotFrameLog(const std::string& path, const std::vector<FrameLogRow>& rows, const std::string& title) {
-  cv::Mat image(900, 1200, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::Mat image(1260, 1200, CV_8UC3, cv::Scalar(255, 255, 255));
   const cv::Rect top(110, 70, 1050, 380);
-  const cv::Rect bottom(110, 560, 1050, 260);
+  const cv::Rect middle(110, 560, 1050, 260);
+  const cv::Rect bottom(110, 940, 1050, 260);
   const double t0 = rows.empty() ? 0.0 : rows.front().stamp;
   Range t{0.0, rows.empty() ? 1.0 : std::max(rows.back().stamp - t0, 1e-3)};
   t = padded(t, 0.01);
@@ -134,6 +173,8 @@ void plotFrameLog(const std::string& path, const std::vector<FrameLogRow>& rows,
                       " missed, " + std::to_string(lost) + " lost, " + std::to_string(reference) +
                       " from the reference keyframe)",
                   {top.x + top.width / 2, top.y - 16}, 0.55, 1);
+
+  plotPositionStd(image, middle, t, t0, rows);
 
   PlotPanel time(image, bottom, t, {0.0, max_ms * 1.1});
   time.drawAxes("time since the first frame [s]", "track [ms]");

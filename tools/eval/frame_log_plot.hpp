@@ -15,14 +15,16 @@ struct FrameLogRow {
   int first_inliers = 0;    // inliers of the first pose
   int frames_missed = 0;    // frames lost or dropped just before this one
   double track_ms = 0.0;
+  double position_std_mm = -1.0;  // how well the inliers pin the position; < 0: none ('-', or an older log)
 };
 
 // Reads a frame log by its header's column names (the '# stamp<TAB>seq...' line); throws EvalError naming
 // the file and line when a line is malformed or a column is missing.
 std::vector<FrameLogRow> readFrameLog(const std::string& path);
 
-// Two panels over time: tracked inliers (line), first inliers coloured by pose source, missed frames as
-// ticks, lost frames marked; tracking ms with the 30 Hz frame period. Throws EvalError when not written.
+// Three panels over time: tracked inliers (line), first inliers coloured by pose source, missed frames as
+// ticks, lost frames marked; each frame's position std (where the log has it); tracking ms with the 30 Hz
+// frame period. Throws EvalError when not written.
 void plotFrameLog(const std::string& path, const std::vector<FrameLogRow>& rows, const std::string& title);
 
 }  // namespace bmp::eval
