@@ -34,6 +34,8 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
     pose.seq = seq;
     pose.state = state;
     pose.processing_ms = state == slam_pose_t::STATE_SKIPPED ? 0.0f : 10.0f + static_cast<float>(seq);
+    const bool posed = state == slam_pose_t::STATE_OK || state == slam_pose_t::STATE_RELOCALISED;
+    pose.position_std_m = posed ? 0.001f * static_cast<float>(seq) : -1.0f;  // -1: none
     publisher.publish("SLAM_POSE", pose);
     detections_t det{};
     det.seq = seq;
@@ -52,8 +54,10 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
   EXPECT_EQ(s.lost, 1);
   EXPECT_EQ(s.relocalised, 1);
   EXPECT_EQ(s.skipped, 1);
-  EXPECT_EQ(s.tracking_ms.count(), 6u);            // not the skipped frame
-  EXPECT_DOUBLE_EQ(s.tracking_ms.median(), 12.5);  // 10, 11, 12, 13, 14, 16
+  EXPECT_EQ(s.tracking_ms.count(), 6u);                // not the skipped frame
+  EXPECT_DOUBLE_EQ(s.tracking_ms.median(), 12.5);      // 10, 11, 12, 13, 14, 16
+  EXPECT_EQ(s.position_std_mm.count(), 4u);            // the ok and relocalised frames
+  EXPECT_NEAR(s.position_std_mm.median(), 3.0, 1e-3);  // 1, 2, 4, 6 mm
   EXPECT_EQ(s.detections, 7);
   EXPECT_EQ(s.detections_skipped, 1);
   EXPECT_EQ(s.detector_ms.count(), 6u);
@@ -67,6 +71,8 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
   const std::string text = formatSummaryText(s);
   EXPECT_NE(text.find("7 frames answered: 3 ok, 1 relocalised, 0 degraded, 1 lost"), std::string::npos)
       << text;
+  EXPECT_NE(text.find("position std median 3.0 mm"), std::string::npos) << text;
+  EXPECT_NE(json.find("\"position_std_mm\": {\"count\": 4"), std::string::npos) << json;
 }
 
 // Each process's last heartbeat, by name and instance: how many frames it received, processed, dropped, lost

@@ -78,6 +78,9 @@ std::string formatSummaryText(const RunSummary& s) {
   out << "  tracker:   " << s.poses << " frames answered: " << s.ok << " ok, " << s.relocalised
       << " relocalised, " << s.degraded << " degraded, " << s.lost << " lost, " << s.initialising
       << " initialising, " << s.skipped << " skipped; tracking " << textTiming(s.tracking_ms) << "\n";
+  if (!s.position_std_mm.empty())
+    out << "  poses:     position std median " << number(s.position_std_mm.median(), 1) << " mm, p95 "
+        << number(s.position_std_mm.p95(), 1) << " mm (how well each frame's keypoints pin it)\n";
   out << "  detector:  " << s.detections << " frames answered, " << s.detections_skipped << " skipped; "
       << textTiming(s.detector_ms) << "\n";
   out << "  end to end: " << number(s.answered_per_second(), 1)
@@ -92,7 +95,8 @@ std::string formatSummaryJson(const RunSummary& s) {
   out << "{\n  \"tracker\": {\"frames\": " << s.poses << ", \"ok\": " << s.ok
       << ", \"relocalised\": " << s.relocalised << ", \"degraded\": " << s.degraded
       << ", \"lost\": " << s.lost << ", \"initialising\": " << s.initialising
-      << ", \"skipped\": " << s.skipped << ", \"tracking_ms\": " << jsonTiming(s.tracking_ms) << "},\n";
+      << ", \"skipped\": " << s.skipped << ", \"tracking_ms\": " << jsonTiming(s.tracking_ms)
+      << ", \"position_std_mm\": " << jsonTiming(s.position_std_mm) << "},\n";
   out << "  \"detector\": {\"frames\": " << s.detections << ", \"skipped\": " << s.detections_skipped
       << ", \"per_frame_ms\": " << jsonTiming(s.detector_ms) << "},\n";
   out << "  \"end_to_end\": {\"frames_per_second\": " << number(s.answered_per_second(), 3)
@@ -135,6 +139,8 @@ void RunMonitor::onPose(const slam_pose_t& m) {
       break;
   }
   if (state != slam_pose_t::STATE_SKIPPED) s.tracking_ms.add(processing_ms);
+  const float position_std_m = m.position_std_m;
+  if (std::isfinite(position_std_m) && position_std_m >= 0.0f) s.position_std_mm.add(position_std_m * 1000.0);
   if (s.poses > 1) s.frame_period_ms.add(since_last_pose_.elapsedMs());
   since_last_pose_.restart();
 }

@@ -36,8 +36,9 @@ struct ProcessFigures {
 struct RunSummary {
   int64_t poses = 0;  // SLAM_POSE messages: one per frame the tracker answered
   int64_t ok = 0, lost = 0, relocalised = 0, initialising = 0, skipped = 0, degraded = 0;
-  TimingStats tracking_ms;  // processing_ms of the tracked frames
-  int64_t detections = 0;   // DETECTIONS messages
+  TimingStats tracking_ms;      // processing_ms of the tracked frames
+  TimingStats position_std_mm;  // position_std_m of the frames that have one (tracked), in mm
+  int64_t detections = 0;       // DETECTIONS messages
   int64_t detections_skipped = 0;
   TimingStats detector_ms;             // inference_ms of the processed frames
   TimingStats frame_period_ms;         // wall-clock time between consecutive poses: the end-to-end pace
