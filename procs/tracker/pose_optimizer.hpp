@@ -34,10 +34,10 @@ int optimizePose(SE3& T_cam_world, std::vector<PoseObservation>& observations, c
                  const PoseOptimizerOptions& options, const PositionPrior* prior = nullptr);
 
 // How well the inlier observations alone pin the camera's position: the standard deviation (metres) of the
-// camera centre along its worst-determined direction, from the inverse of the observations' information
-// (each keypoint at its level's sigma and its cost weight; no prior). Far points in one band of the image
-// leave a sideways shift with a turn barely seen, and this says by how much. Infinity when the inliers do
-// not determine the pose.
+// camera centre along its worst-determined direction, from the covariance of the weighted least-squares fit
+// (each keypoint at its level's sigma, weighted as in the solve; no prior). Far points in one band of the
+// image leave a sideways shift with a turn barely seen, and this says by how much. Infinity when the inliers
+// do not determine the pose.
 double positionStd(const SE3& T_cam_world, const std::vector<PoseObservation>& observations,
                    const PoseCamera& camera);
 
