@@ -127,7 +127,8 @@ class Frame {
   std::vector<Eigen::Vector3d> anchor;
   std::vector<uint8_t> anchored;
   int numDynamic() const;
-  // Set by each pose optimisation: how well its inliers pin the position (pose_optimizer.hpp positionStd).
+  // Set by the local map's pose solve, the frame's last: how well its inliers pin the position
+  // (pose_optimizer.hpp positionStd).
   double position_std_m = std::numeric_limits<double>::infinity();
 
   void setPose(const SE3& T_world_cam);

@@ -19,7 +19,7 @@ bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options) {
 }
 
 int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options,
-                      const PositionPrior* prior) {
+                      const PositionPrior* prior, double* position_std_m) {
   const Features& f = *frame.features;
   std::vector<PoseObservation> obs;
   std::vector<int> index;
@@ -42,7 +42,7 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
     index.push_back(i);
   }
   if (obs.size() < 3) {
-    frame.position_std_m = std::numeric_limits<double>::infinity();
+    if (position_std_m) *position_std_m = std::numeric_limits<double>::infinity();
     return 0;
   }
   SE3 T_cam_world = frame.T_cam_world();
@@ -50,7 +50,7 @@ int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerO
   T_cam_world = findConsensusPose(T_cam_world, obs, camera, options).T_cam_world;
   const int inliers = optimizePose(T_cam_world, obs, camera, options, prior);
   frame.setPose(T_cam_world.inverse());
-  frame.position_std_m = positionStd(T_cam_world, obs, camera);
+  if (position_std_m) *position_std_m = positionStd(T_cam_world, obs, camera);
   for (std::size_t k = 0; k < obs.size(); ++k) frame.outlier[index[k]] = obs[k].outlier ? 1 : 0;
   return inliers;
 }

@@ -14,8 +14,10 @@ bool isMature(const MapPoint& mp, const PoseOptimizerOptions& options);
 
 // Sets the frame's pose and outlier flags; returns the number of inliers.
 // prior: where the frame should be (MotionPrior), or null.
+// position_std_m: if given, set to how well the inliers pin the position (positionStd; infinity with fewer
+// than 3 observations). Only the frame's last solve needs it, so the others skip the work.
 int optimizeFramePose(Frame& frame, const FrameGeometry& g, const PoseOptimizerOptions& options,
-                      const PositionPrior* prior = nullptr);
+                      const PositionPrior* prior = nullptr, double* position_std_m = nullptr);
 // Unmatches the outliers; returns the matches left that are map points (not temporary ones).
 int dropOutliers(Frame& frame);
 

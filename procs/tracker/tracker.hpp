@@ -125,8 +125,8 @@ class Tracker {
                   TrackResult& result) const;
   bool initialise(Frame& frame, TrackResult& result);
   // Priors and box observation into the frame's moving probabilities, then the pose without the
-  // dynamic keypoints.
-  void optimizePose(Frame& frame);
+  // dynamic keypoints (and, if asked, how well it is pinned: optimizeFramePose).
+  void optimizePose(Frame& frame, double* position_std_m = nullptr);
   // The motion model, else the reference keyframe; after a gap, the better of the two
   // (tracking.recheck_*).
   bool trackFromLastFrame(Frame& frame, TrackResult& result);

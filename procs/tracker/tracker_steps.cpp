@@ -34,12 +34,13 @@ void Tracker::prepareLastFrame() {
   }
 }
 
-void Tracker::optimizePose(Frame& frame) {
+void Tracker::optimizePose(Frame& frame, double* position_std_m) {
   {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.applyPriors(frame);
   }
-  optimizeFramePose(frame, *geometry_, config_.pose, position_prior_ ? &*position_prior_ : nullptr);
+  optimizeFramePose(frame, *geometry_, config_.pose, position_prior_ ? &*position_prior_ : nullptr,
+                    position_std_m);
 }
 
 namespace {
@@ -224,7 +225,7 @@ bool Tracker::trackLocalMap(Frame& frame) {
     if (mp && !mp->bad && !mp->temporary()) ++mp->visible;
   matchLocalPoints(frame, local_points_, *geometry_, o, config_.matcher,
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
-  optimizePose(frame);
+  optimizePose(frame, &frame.position_std_m);  // the frame's last solve: the one its pose comes from
   // The geometric observation; map points take the posteriors.
   {
     const ScopedAccumulator timer(dynamic_ms_);
