@@ -8,6 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "bmp/common/timing.hpp"
 #include "eval/eval_error.hpp"
 #include "eval/plot_canvas.hpp"
 
@@ -56,11 +57,10 @@ constexpr double kStdAxisMaxMm = 50.0;
 
 void plotPositionStd(cv::Mat& image, const cv::Rect& area, const Range& t, double t0,
                      const std::vector<FrameLogRow>& rows) {
-  std::vector<double> values;
+  TimingStats values;  // not times, but the same median and max as bmp-run's summary and bmp-bench-tracker
   for (const FrameLogRow& r : rows)
-    if (r.position_std_mm >= 0.0) values.push_back(r.position_std_mm);
-  const double top =
-      values.empty() ? 10.0 : std::min(kStdAxisMaxMm, *std::max_element(values.begin(), values.end()));
+    if (r.position_std_mm >= 0.0) values.add(r.position_std_mm);
+  const double top = values.empty() ? 10.0 : std::min(kStdAxisMaxMm, values.max());
   PlotPanel panel(image, area, t, {0.0, std::max(top, 1.0) * 1.1});
   panel.drawAxes("time since the first frame [s]", "position std [mm]");
   std::vector<cv::Point2d> line;
@@ -73,9 +73,8 @@ void plotPositionStd(cv::Mat& image, const cv::Rect& area, const Range& t, doubl
   if (values.empty()) {
     heading += ": not in this log";
   } else {
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     char median[64];
-    std::snprintf(median, sizeof(median), ", median %.1f mm", values[values.size() / 2]);
+    std::snprintf(median, sizeof(median), ", median %.1f mm", values.median());
     heading += median;
   }
   putTextCentered(image, heading, {area.x + area.width / 2, area.y - 16}, 0.55, 1);
