@@ -39,7 +39,7 @@ struct TrackingOptions {
   // recheck_inlier_ratio of the last frame's tracked points is also tracked from the reference keyframe,
   // and the pose with more inliers kept (ratio 0: off).
   double recheck_gap_s = 0.05;
-  double recheck_inlier_ratio = 0.0;  // off: 0.5 helped offline, not in real time beside a busy program
+  double recheck_inlier_ratio = 0.5;
 };
 
 // Projection search (matcher.cpp): which map points are worth looking for in a view, and how wide to look.
