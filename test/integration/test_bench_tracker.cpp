@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bmp/common/child_process.hpp"
