@@ -69,6 +69,7 @@ TrackingOptions trackingOptions(const Config& c) {
   readPositive(c, "close_depth_m", o.close_depth_m);
   readPositive(c, "virtual_baseline_m", o.virtual_baseline_m);
   readAtLeast(c, "init_min_keypoints", o.init_min_keypoints, 1);
+  readAtLeast(c, "motion_max_scale", o.motion_max_scale, 1.0);
   readAtLeast(c, "motion_search_radius", o.motion_search_radius, 1);
   readAtLeast(c, "local_search_radius", o.local_search_radius, 1);
   readAtLeast(c, "reloc_search_radius", o.reloc_search_radius, 1);

@@ -47,12 +47,11 @@ namespace {
 
 // The constant-velocity motion over dt, from one measured over velocity_dt: a dropped frame in between
 // must not leave the prediction a frame behind. Rotation by its angle-axis, translation linearly (the
-// motions between frames are small); beyond a few frames' worth the model says nothing.
-std::optional<SE3> scaledMotion(const SE3& velocity, double velocity_dt, double dt) {
-  constexpr double kMaxScale = 4.0;
+// motions between frames are small); beyond max_scale frames' worth the model says nothing.
+std::optional<SE3> scaledMotion(const SE3& velocity, double velocity_dt, double dt, double max_scale) {
   if (velocity_dt <= 0.0 || dt <= 0.0) return velocity;
   const double s = dt / velocity_dt;
-  if (s > kMaxScale) return std::nullopt;
+  if (s > max_scale) return std::nullopt;
   const Eigen::AngleAxisd aa(velocity.rotation());
   SE3 out = SE3::Identity();
   out.linear() = Eigen::AngleAxisd(aa.angle() * s, aa.axis()).toRotationMatrix();
@@ -65,7 +64,8 @@ std::optional<SE3> scaledMotion(const SE3& velocity, double velocity_dt, double 
 bool Tracker::trackWithMotionModel(Frame& frame) {
   if (!velocity_ || !last_frame_.features) return false;
   const auto& o = config_.tracking;
-  const std::optional<SE3> motion = scaledMotion(*velocity_, velocity_dt_, frame.stamp - last_frame_.stamp);
+  const std::optional<SE3> motion =
+      scaledMotion(*velocity_, velocity_dt_, frame.stamp - last_frame_.stamp, o.motion_max_scale);
   if (!motion) return false;
   frame.setPose(last_frame_.T_world_cam() * *motion);
   position_prior_ = motion_prior_.predict(last_frame_.center(), frame.stamp - last_frame_.stamp);

@@ -42,6 +42,7 @@ void printOrbAndTracking(const TrackerConfig& c, FieldPrinter& put) {
   put("tracking.close_depth_m", t.close_depth_m);
   put("tracking.virtual_baseline_m", t.virtual_baseline_m);
   put("tracking.init_min_keypoints", t.init_min_keypoints);
+  put("tracking.motion_max_scale", t.motion_max_scale);
   put("tracking.motion_search_radius", t.motion_search_radius);
   put("tracking.local_search_radius", t.local_search_radius);
   put("tracking.reloc_search_radius", t.reloc_search_radius);
@@ -221,6 +222,7 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"orb: {scale_factor: 2.5}", "orb.scale_factor"},
       {"tracking: {local_match_ratio: 1.5}", "tracking.local_match_ratio"},
       {"tracking: {motion_search_radius: 0}", "tracking.motion_search_radius"},
+      {"tracking: {motion_max_scale: 0.5}", "tracking.motion_max_scale"},
       {"matcher: {fuse_max_distance: 300}", "matcher.fuse_max_distance"},
       {"matcher: {min_view_cos: -2}", "matcher.min_view_cos"},
       {"pose_optimizer: {chi2_rgbd: 0}", "pose_optimizer.chi2_rgbd"},
