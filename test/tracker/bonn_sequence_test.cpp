@@ -35,12 +35,8 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   EXPECT_LT(rmse, 0.03) << "ATE RMSE " << rmse;
 }
 
-// Each result says where its first pose came from, how many inliers that kept, and how long after the last
-// tracked frame it came (the frame log's columns): three frames dropped before frame 40 show as a 4-frame
-// gap.
-TEST(TrackerBonn, EachFrameSaysWhereItsFirstPoseCameFromAndAfterWhatGap) {
-  TrackerConfig config;
-  config.mapping.threaded = false;
+// Bonn's first frames with 37, 38 and 39 never reaching the tracker: result 37 is Bonn's frame 40.
+OfflineResult runWithThreeDropped(const TrackerConfig& config, int frames) {
   Tracker tracker(bonnCamera(), config);
   FrameProvider all = tumFolderFrames(test::bonnDir());
   int index = 0;
@@ -48,12 +44,21 @@ TEST(TrackerBonn, EachFrameSaysWhereItsFirstPoseCameFromAndAfterWhatGap) {
     for (;;) {
       auto f = all();
       const int i = index++;
-      if (!f || (i < 37 || i > 39)) return f;  // 37, 38 and 39 never reach the tracker
+      if (!f || (i < 37 || i > 39)) return f;
     }
   };
   OfflineOptions options;
-  options.max_frames = 60;
-  const OfflineResult result = runOffline(tracker, dropping, options);
+  options.max_frames = frames;
+  return runOffline(tracker, dropping, options);
+}
+
+// Each result says where its first pose came from, how many inliers that kept, and how long after the last
+// tracked frame it came (the frame log's columns): three frames dropped before frame 40 show as a 4-frame
+// gap.
+TEST(TrackerBonn, EachFrameSaysWhereItsFirstPoseCameFromAndAfterWhatGap) {
+  TrackerConfig config;
+  config.mapping.threaded = false;
+  const OfflineResult result = runWithThreeDropped(config, 60);
   ASSERT_EQ(result.results.size(), 60u);
   EXPECT_EQ(result.results[0].pose_source, PoseSource::kMapStart);
   EXPECT_EQ(result.results[0].since_last_s, 0.0);
@@ -74,6 +79,22 @@ TEST(TrackerBonn, EachFrameSaysWhereItsFirstPoseCameFromAndAfterWhatGap) {
     const double frames = i == 37 ? 4.0 : 1.0;  // result 37 is Bonn's frame 40
     EXPECT_NEAR(r.since_last_s, frames * period, 0.003) << "frame " << i;
   }
+}
+
+// The gap before Bonn's frame 40 is 4.01 frame intervals: within a reach of 4.5 the constant-velocity guess
+// tracks it, within 3.5 there is no guess and the reference keyframe does (tracking.motion_max_scale).
+TEST(TrackerBonn, TheGuessReachesAcrossAGapOnlyWithinMotionMaxScale) {
+  TrackerConfig config;
+  config.mapping.threaded = false;
+  const auto sourceAfterGap = [&](double max_scale) {
+    config.tracking.motion_max_scale = max_scale;
+    const OfflineResult result = runWithThreeDropped(config, 40);
+    EXPECT_EQ(result.frames_lost, 0) << "reach " << max_scale;
+    EXPECT_GT(result.results.at(37).since_last_s, 3.5 * (result.results[2].stamp - result.results[1].stamp));
+    return result.results.at(37).pose_source;
+  };
+  EXPECT_EQ(sourceAfterGap(4.5), PoseSource::kMotionModel);
+  EXPECT_EQ(sourceAfterGap(3.5), PoseSource::kReferenceKeyFrame);
 }
 
 // The whole sequence, people walking close to the camera throughout, with no dynamic handling.
