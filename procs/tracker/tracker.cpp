@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bmp/common/timing.hpp"
+#include "tracker/trajectory_smoother.hpp"
 
 namespace bmp::tracker {
 
@@ -302,10 +303,11 @@ int Tracker::countTracked(const Frame& frame) const {
   return n;
 }
 
-Tracker::FrameRecord::FrameRecord(double stamp_s, int64_t reference, const SE3& T)
+Tracker::FrameRecord::FrameRecord(double stamp_s, int64_t reference, const SE3& T, float std_m)
     : stamp(stamp_s),
       reference_id(reference),
       t_ref_cam(T.translation().cast<float>()),
+      position_std_m(std_m),
       q_ref_cam(Eigen::Quaterniond(T.linear()).cast<float>()) {}
 
 SE3 Tracker::FrameRecord::T_ref_cam() const {
@@ -314,7 +316,9 @@ SE3 Tracker::FrameRecord::T_ref_cam() const {
 
 void Tracker::rememberFrame(const Frame& frame) {
   last_T_ref_cam_ = reference_kf_->T_cam_world() * frame.T_world_cam();
-  records_.emplace_back(frame.stamp, reference_kf_->id, last_T_ref_cam_);
+  if (state_ == TrackingState::kRelocalised) relocalised_records_.push_back(records_.size());
+  records_.emplace_back(frame.stamp, reference_kf_->id, last_T_ref_cam_,
+                        static_cast<float>(frame.position_std_m));
   last_frame_ = frame;
   // A keyframe's own pose is refined by local BA itself.
   if (refiner_.enabled() && last_keyframe_seq_ != frame.seq) {
@@ -349,7 +353,7 @@ void Tracker::refineSettledFrames(bool all) {
     const std::optional<SE3> refined =
         refineFramePose(T_world_ref * r.T_ref_cam(), p.observations, camera, config_.pose,
                         config_.dynamic.threshold, config_.refine.min_inliers, prior ? &*prior : nullptr);
-    if (refined) r = FrameRecord(r.stamp, r.reference_id, T_world_ref.inverse() * *refined);
+    if (refined) r = FrameRecord(r.stamp, r.reference_id, T_world_ref.inverse() * *refined, r.position_std_m);
   });
 }
 
@@ -362,7 +366,15 @@ Trajectory Tracker::trajectory() {
   refineSettledFrames(true);
   Trajectory out;
   out.reserve(records_.size());
-  for (const auto& r : records_) out.push_back({r.stamp, normalized(recordPose(r))});
+  std::vector<SmootherSample> samples;
+  samples.reserve(records_.size());
+  for (const auto& r : records_) {
+    out.push_back({r.stamp, normalized(recordPose(r))});
+    samples.push_back({r.stamp, out.back().T_world_cam.translation(), r.position_std_m, false});
+  }
+  for (const std::size_t i : relocalised_records_) samples[i].starts_stretch = true;
+  const std::vector<Eigen::Vector3d> smoothed = smoothPositions(samples, config_.refine.smoother);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].T_world_cam.translation() = smoothed[i];
   return out;
 }
 

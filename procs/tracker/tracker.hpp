@@ -156,11 +156,12 @@ class Tracker {
   // kept small (48 bytes, not an Isometry3d's 144): the pose relative to a nearby keyframe needs no
   // double precision (float: under a micrometre and a microradian at a few metres).
   struct FrameRecord {
-    FrameRecord(double stamp, int64_t reference_id, const SE3& T_ref_cam);
+    FrameRecord(double stamp, int64_t reference_id, const SE3& T_ref_cam, float position_std_m);
     SE3 T_ref_cam() const;
     double stamp;
     int64_t reference_id;
     Eigen::Vector3f t_ref_cam;
+    float position_std_m;  // the tracked pose's (TrackResult): the weight trajectory_smoother.hpp gives it
     Eigen::Quaternionf q_ref_cam;
   };
   static_assert(sizeof(FrameRecord) <= 48, "a frame record is kept for every frame of the run");
@@ -186,8 +187,9 @@ class Tracker {
   int64_t last_keyframe_seq_ = 0;
   int64_t last_reloc_seq_ = -1000000;
   double dynamic_ms_ = 0.0;  // the current frame's time in the dynamic stage, spread over several steps
-  std::deque<FrameRecord> records_;  // a deque: no copy of the whole run's records when it grows
-  FrameRefiner refiner_;             // frames waiting for their second look, by index into records_
+  std::deque<FrameRecord> records_;               // a deque: no copy of the whole run's records when it grows
+  std::vector<std::size_t> relocalised_records_;  // records where tracking began again after a loss
+  FrameRefiner refiner_;  // frames waiting for their second look, by index into records_
 };
 
 }  // namespace bmp::tracker

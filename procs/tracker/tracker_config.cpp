@@ -169,6 +169,8 @@ RefineOptions refineOptions(const Config& c) {
   readAtLeast(c, "per_frame", o.per_frame, 1);
   readAtLeast(c, "max_pending", o.max_pending, 0);
   readAtLeast(c, "min_inliers", o.min_inliers, 6);
+  readAtLeast(c, "smooth_accel", o.smoother.accel_sigma, 0.0);
+  readPositive(c, "smooth_max_gap_s", o.smoother.max_gap_s);
   return o;
 }
 

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <string>
 
+#include "tracker/trajectory_smoother.hpp"
+
 namespace bmp::tracker {
 
 struct OrbOptions {
@@ -130,8 +132,9 @@ struct RefineOptions {
   int after_keyframes =
       5;              // re-estimate a frame when its reference keyframe is this many keyframes old (0: off)
   int per_frame = 2;  // at most this many per tracked frame: the cost is spread, not paid at a keyframe
-  int max_pending = 300;  // frames waiting (about 10 kB each); past this the oldest gets its look at once
-  int min_inliers = 30;   // fewer agreeing points: the frame keeps the pose it was tracked with
+  int max_pending = 300;     // frames waiting (about 10 kB each); past this the oldest gets its look at once
+  int min_inliers = 30;      // fewer agreeing points: the frame keeps the pose it was tracked with
+  SmootherOptions smoother;  // the positions written, smoothed over the camera's motion
 };
 
 struct RelocalizationOptions {

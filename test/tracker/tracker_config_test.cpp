@@ -125,6 +125,8 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("refine.per_frame", f.per_frame);
   put("refine.max_pending", f.max_pending);
   put("refine.min_inliers", f.min_inliers);
+  put("refine.smooth_accel", f.smoother.accel_sigma);
+  put("refine.smooth_max_gap_s", f.smoother.max_gap_s);
 }
 
 void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
@@ -235,6 +237,8 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"keyframes: {close_min_frames: 0}", "keyframes.close_min_frames"},
       {"mapping: {queue_capacity: 0}", "mapping.queue_capacity"},
       {"mapping: {point_found_ratio: -0.1}", "mapping.point_found_ratio"},
+      {"refine: {smooth_accel: -1}", "refine.smooth_accel"},
+      {"refine: {smooth_max_gap_s: 0}", "refine.smooth_max_gap_s"},
       {"relocalization: {ransac_reprojection_px: 0}", "relocalization.ransac_reprojection_px"},
       {"relocalization: {min_matches: 3}", "relocalization.min_matches"},
       {"dynamic: {mode: bayes}", "dynamic.mode"},
