@@ -47,7 +47,7 @@ TEST(TrajectorySmoother, ANoisyPathComesCloserToTheTruth) {
   const double before = rmsError(positionsOf(s), s);
   const double after = rmsError(smoothPositions(s, {}), s);
   EXPECT_NEAR(before, 0.01 * std::sqrt(3.0), 0.002);
-  // The measured factor is about 0.3; an unweighted or unlinked solve leaves 1.
+  // The measured factor is about 0.3; without the acceleration terms the solve would leave it at 1.
   EXPECT_LT(after, 0.5 * before) << before << " -> " << after;
 }
 
