@@ -171,6 +171,7 @@ RefineOptions refineOptions(const Config& c) {
   readAtLeast(c, "min_inliers", o.min_inliers, 6);
   readAtLeast(c, "smooth_accel", o.smoother.accel_sigma, 0.0);
   readPositive(c, "smooth_max_gap_s", o.smoother.max_gap_s);
+  readAtLeast(c, "smooth_accel_lag_s", o.smoother.accel_lag_s, 0.0);
   return o;
 }
 

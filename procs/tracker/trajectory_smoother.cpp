@@ -37,16 +37,27 @@ void solvePentadiagonal(std::vector<double> d, std::vector<double> e, std::vecto
   }
 }
 
-void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
-                   double accel_sigma, std::vector<Eigen::Vector3d>& out) {
-  const std::size_t n = end - begin;
-  if (n < 3) return;
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// The median std of the stretch's known ones (0 when none is known).
+double medianStd(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end) {
   std::vector<double> stds;
   for (std::size_t i = begin; i < end; ++i)
     if (known(s[i].std_m)) stds.push_back(s[i].std_m);
-  if (stds.empty()) return;
-  std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
-  const double fallback = stds[stds.size() / 2];
+  return stds.empty() ? 0.0 : median(std::move(stds));
+}
+
+void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
+                   const SmootherOptions& options, std::vector<Eigen::Vector3d>& out) {
+  const std::size_t n = end - begin;
+  if (n < 3) return;
+  const double fallback = medianStd(s, begin, end);
+  if (fallback <= 0.0) return;
+  const double accel_sigma =
+      std::max(options.accel_sigma, measuredAccelSigma(s, begin, end, options.accel_lag_s));
 
   // Normal equations of sum w_i |p_i - z_i|^2 + sum_k |a_k|^2 / accel_sigma^2, with a_k the acceleration
   // from frames k-1, k, k+1 at their own spacing.
@@ -75,6 +86,33 @@ void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std:
 
 }  // namespace
 
+double measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
+                          double lag_s) {
+  const std::size_t n = end - begin;
+  if (lag_s <= 0.0 || n < 3) return 0.0;
+  const double fallback = medianStd(s, begin, end);
+  std::vector<double> spacings;
+  for (std::size_t i = begin + 1; i < end; ++i) spacings.push_back(s[i].stamp - s[i - 1].stamp);
+  const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / median(spacings))));
+  // Too few second differences to take a median of: no measurement (the floor applies).
+  constexpr std::size_t kMinDifferences = 10;
+  if (n < 2 * lag + kMinDifferences) return 0.0;
+  auto var = [&](std::size_t i) {
+    const double sd = known(s[i].std_m) ? s[i].std_m : fallback;
+    return sd * sd;
+  };
+  std::vector<double> per_axis;  // each second difference's squared acceleration per axis, less its noise
+  for (std::size_t i = begin + lag; i + lag < end; ++i) {
+    const std::size_t j = i - lag, k = i + lag;
+    const double t0 = s[i].stamp - s[j].stamp, t1 = s[k].stamp - s[i].stamp, span = t0 + t1;
+    const double cj = 2.0 / (t0 * span), ck = 2.0 / (t1 * span), ci = -(cj + ck);
+    const Eigen::Vector3d a = cj * s[j].position + ci * s[i].position + ck * s[k].position;
+    const double noise = cj * cj * var(j) + ci * ci * var(i) + ck * ck * var(k);
+    per_axis.push_back(a.squaredNorm() / 3.0 - noise);
+  }
+  return std::sqrt(std::max(0.0, median(std::move(per_axis))));
+}
+
 std::vector<Eigen::Vector3d> smoothPositions(const std::vector<SmootherSample>& samples,
                                              const SmootherOptions& options) {
   std::vector<Eigen::Vector3d> out;
@@ -87,7 +125,7 @@ std::vector<Eigen::Vector3d> smoothPositions(const std::vector<SmootherSample>& 
                         !(samples[i].stamp > samples[i - 1].stamp) ||
                         samples[i].stamp - samples[i - 1].stamp > options.max_gap_s;
     if (!breaks) continue;
-    smoothStretch(samples, begin, i, options.accel_sigma, out);
+    smoothStretch(samples, begin, i, options, out);
     begin = i;
   }
   return out;

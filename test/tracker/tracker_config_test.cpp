@@ -127,6 +127,7 @@ void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
   put("refine.min_inliers", f.min_inliers);
   put("refine.smooth_accel", f.smoother.accel_sigma);
   put("refine.smooth_max_gap_s", f.smoother.max_gap_s);
+  put("refine.smooth_accel_lag_s", f.smoother.accel_lag_s);
 }
 
 void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
@@ -239,6 +240,7 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"mapping: {point_found_ratio: -0.1}", "mapping.point_found_ratio"},
       {"refine: {smooth_accel: -1}", "refine.smooth_accel"},
       {"refine: {smooth_max_gap_s: 0}", "refine.smooth_max_gap_s"},
+      {"refine: {smooth_accel_lag_s: -0.1}", "refine.smooth_accel_lag_s"},
       {"relocalization: {ransac_reprojection_px: 0}", "relocalization.ransac_reprojection_px"},
       {"relocalization: {min_matches: 3}", "relocalization.min_matches"},
       {"dynamic: {mode: bayes}", "dynamic.mode"},
