@@ -76,6 +76,8 @@ SyntheticSceneConfig syntheticSceneFromConfig(const Config& s) {
   c.max_depth = s.get("max_depth", c.max_depth);
   c.depth_noise = s.get("depth_noise", c.depth_noise);
   c.color_noise = s.get("color_noise", c.color_noise);
+  c.exposure_s = s.get("exposure_s", c.exposure_s);
+  c.exposure_samples = s.get("exposure_samples", c.exposure_samples);
   return c;
 }
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <opencv2/imgproc.hpp>
+
 #include "capture/synthetic_internals.hpp"
 
 namespace bmp::capture {
@@ -253,11 +255,29 @@ SyntheticFrame SyntheticScene::render(int index) const {
   if (index < 0 || index >= numFrames())
     throw std::out_of_range("synthetic scene: frame " + std::to_string(index) + " outside [0, " +
                             std::to_string(numFrames()) + ")");
+  const double t = index / config_.fps;
+  SyntheticFrame frame = renderAt(index, t);
+  if (config_.exposure_s <= 0.0) return frame;
+  cv::Mat sum;
+  frame.bgr.convertTo(sum, CV_32FC3);
+  const int n = config_.exposure_samples;
+  for (int j = 0; j < n; ++j) {
+    const double offset = (static_cast<double>(j) / (n - 1) - 0.5) * config_.exposure_s;
+    // The centre sample (odd n) is the frame already rendered.
+    if (2 * j + 1 == n) continue;
+    cv::accumulate(renderAt(index, t + offset).bgr, sum);
+  }
+  const int renders = n + (n % 2 == 0 ? 1 : 0);  // an even n adds the centre to its n samples
+  sum.convertTo(frame.bgr, CV_8UC3, 1.0 / renders);
+  return frame;
+}
+
+SyntheticFrame SyntheticScene::renderAt(int index, double t) const {
   const CameraIntrinsics& k = config_.camera;
   SyntheticFrame frame;
   frame.index = index;
   frame.stamp = stamp(index);
-  frame.T_world_cam = cameraPose(index);
+  frame.T_world_cam = synth::cameraPoseAt(config_, in_->motion, t);
   frame.bgr.create(k.height, k.width, CV_8UC3);
   frame.depth.create(k.height, k.width, CV_16UC1);
   frame.mask = cv::Mat::zeros(k.height, k.width, CV_8UC1);
@@ -268,7 +288,7 @@ SyntheticFrame SyntheticScene::render(int index) const {
   // Textures: 6 per box, the room's first, then the furniture's, then the movers'.
   for (std::size_t i = 0; i < static_boxes_.size(); ++i)
     renderer.addBox(static_boxes_[i], SE3::Identity(), 6 + 6 * static_cast<int>(i), 0);
-  const auto objects = movingObjects(index);
+  const auto objects = movingObjectsAt(t);
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const MovingObjectState& o = objects[i];
     const bool person = o.info.kind == MoverKind::kPerson;

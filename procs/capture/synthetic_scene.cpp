@@ -60,6 +60,9 @@ void validate(const SyntheticSceneConfig& c) {
   if (c.max_depth <= 0 || c.max_depth * c.camera.depth_scale > 65535)
     fail("max_depth * depth_scale must fit 16 bits");
   if (c.depth_noise < 0 || c.color_noise < 0) fail("noise levels must not be negative");
+  if (c.exposure_s < 0 || c.exposure_s * c.fps > 1.0)
+    fail("exposure_s must be in [0, 1 / fps]: a frame's exposure cannot outlast it");
+  if (c.exposure_samples < 2 || c.exposure_samples > 64) fail("exposure_samples must be in [2, 64]");
 }
 
 }  // namespace
@@ -142,14 +145,17 @@ Trajectory SyntheticScene::groundTruth() const {
 }
 
 std::vector<MovingObjectState> SyntheticScene::movingObjects(int index) const {
-  const double t = index / config_.fps;
+  return movingObjectsAt(index / config_.fps);
+}
+
+std::vector<MovingObjectState> SyntheticScene::movingObjectsAt(double t) const {
   std::vector<MovingObjectState> out;
   for (const auto& path : in_->paths) {
     out.push_back(synth::walkerAt(path, config_, t));
     out.back().info.id = static_cast<int>(out.size());
   }
   if (in_->cast.movers.empty()) return out;
-  const Eigen::Vector3d eye = cameraPose(index).translation();
+  const Eigen::Vector3d eye = synth::cameraPoseAt(config_, in_->motion, t).translation();
   for (const auto& m : in_->cast.movers) {
     const synth::ScriptState st = synth::scriptAt(m, t);
     MovingObjectState s;

@@ -71,6 +71,11 @@ struct SyntheticSceneConfig {
   double max_depth = 8.0;    // m; farther pixels get depth 0
   double depth_noise = 0.0;  // m, standard deviation at 1 m, growing with depth squared
   double color_noise = 1.5;  // grey levels, standard deviation per channel
+  // Motion blur: the colour image is the mean of exposure_samples renders spread over exposure_s, centred
+  // on the frame's stamp, as a sensor integrating light while the camera and the movers move (0: a still
+  // image). Depth, masks and the pose stay those of the stamp.
+  double exposure_s = 0.0;
+  int exposure_samples = 5;
 };
 
 enum class MoverKind { kBox, kPerson };
@@ -133,6 +138,10 @@ class SyntheticScene {
   std::vector<MovingObjectState> movingObjects(int index) const;
 
  private:
+  std::vector<MovingObjectState> movingObjectsAt(double t) const;
+  // Frame index's image as seen at t seconds from the start (index picks the noise).
+  SyntheticFrame renderAt(int index, double t) const;
+
   SyntheticSceneConfig config_;
   AlignedBox room_;
   std::vector<AlignedBox> static_boxes_;

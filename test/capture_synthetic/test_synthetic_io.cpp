@@ -7,6 +7,7 @@
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/config.hpp"
@@ -68,6 +69,8 @@ TEST(SyntheticConfig, ShippedFileIsCompleteAndMatchesTheDefaults) {
   EXPECT_EQ(c.max_depth, d.max_depth);
   EXPECT_EQ(c.depth_noise, d.depth_noise);
   EXPECT_EQ(c.color_noise, d.color_noise);
+  EXPECT_EQ(c.exposure_s, d.exposure_s);
+  EXPECT_EQ(c.exposure_samples, d.exposure_samples);
 }
 
 TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
@@ -103,6 +106,46 @@ TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
   SyntheticSceneConfig tiny;
   tiny.room_size = {2, 2, 2};
   EXPECT_THROW(SyntheticScene{tiny}, std::invalid_argument);
+}
+
+// Motion blur: the colour image is smeared along the motion (less fine detail), the depth, masks, pose and
+// the image's mean brightness stay the stamp's; a camera at rest is not blurred at all.
+TEST(SyntheticOptions, ExposureBlursTheColourImageOnly) {
+  SyntheticSceneConfig sharp = shortSequence(40);
+  sharp.color_noise = 0.0;
+  sharp.camera_period = {1.5, 1.2, 1.0};  // a shaken camera, so 1/30 s of exposure moves the image
+  sharp.rotation_period = {1.6, 1.3, 1.5};
+  SyntheticSceneConfig blurred = sharp;
+  blurred.exposure_s = 1.0 / 30;
+  const SyntheticScene a(sharp), b(blurred);
+  auto detail = [](const cv::Mat& bgr) {
+    cv::Mat grey, lap;
+    cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+    cv::Laplacian(grey, lap, CV_32F);
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(lap, mean, stddev);
+    return stddev[0];
+  };
+  const SyntheticFrame fa = a.render(20), fb = b.render(20);
+  EXPECT_LT(detail(fb.bgr), 0.8 * detail(fa.bgr));
+  EXPECT_NEAR(cv::mean(fb.bgr)[1], cv::mean(fa.bgr)[1], 1.0);
+  EXPECT_EQ(cv::norm(fa.depth, fb.depth, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(fa.mover_ids, fb.mover_ids, cv::NORM_INF), 0);
+  EXPECT_TRUE(fa.T_world_cam.isApprox(fb.T_world_cam));
+
+  SyntheticSceneConfig still = blurred;
+  still.camera_amplitude = {0, 0, 0};
+  still.rotation_amplitude_deg = {0, 0, 0};
+  still.num_moving_objects = 0;
+  SyntheticSceneConfig still_sharp = still;
+  still_sharp.exposure_s = 0.0;
+  EXPECT_LE(
+      cv::norm(SyntheticScene(still).render(5).bgr, SyntheticScene(still_sharp).render(5).bgr, cv::NORM_INF),
+      1);  // rounding of the mean
+
+  SyntheticSceneConfig too_long = sharp;
+  too_long.exposure_s = 0.05;  // longer than a frame at 30 Hz
+  EXPECT_THROW(SyntheticScene{too_long}, std::invalid_argument);
 }
 
 TEST(SyntheticOptions, NoiseAndRangeBehaveAsConfigured) {
