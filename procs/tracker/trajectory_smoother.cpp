@@ -93,7 +93,9 @@ double measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begi
   const double fallback = medianStd(s, begin, end);
   std::vector<double> spacings;
   for (std::size_t i = begin + 1; i < end; ++i) spacings.push_back(s[i].stamp - s[i - 1].stamp);
-  const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / median(spacings))));
+  const double spacing = median(spacings);
+  if (!(spacing > 0.0) || lag_s / spacing > static_cast<double>(n)) return 0.0;
+  const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / spacing)));
   // Too few second differences to take a median of: no measurement (the floor applies).
   constexpr std::size_t kMinDifferences = 10;
   if (n < 2 * lag + kMinDifferences) return 0.0;
@@ -105,12 +107,13 @@ double measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begi
   for (std::size_t i = begin + lag; i + lag < end; ++i) {
     const std::size_t j = i - lag, k = i + lag;
     const double t0 = s[i].stamp - s[j].stamp, t1 = s[k].stamp - s[i].stamp, span = t0 + t1;
+    if (!(t0 > 0.0 && t1 > 0.0)) continue;  // not a stretch (stamps repeat or step back): no difference
     const double cj = 2.0 / (t0 * span), ck = 2.0 / (t1 * span), ci = -(cj + ck);
     const Eigen::Vector3d a = cj * s[j].position + ci * s[i].position + ck * s[k].position;
     const double noise = cj * cj * var(j) + ci * ci * var(i) + ck * ck * var(k);
     per_axis.push_back(a.squaredNorm() / 3.0 - noise);
   }
-  return std::sqrt(std::max(0.0, median(std::move(per_axis))));
+  return per_axis.empty() ? 0.0 : std::sqrt(std::max(0.0, median(std::move(per_axis))));
 }
 
 std::vector<Eigen::Vector3d> smoothPositions(const std::vector<SmootherSample>& samples,

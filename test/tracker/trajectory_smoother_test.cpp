@@ -110,8 +110,11 @@ TEST(TrajectorySmoother, AGentleCameraIsSmoothedAgainstTheFloor) {
   const auto a = smoothPositions(s, fixed);
   const auto b = smoothPositions(s, {});
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(a[i], b[i]) << i;
-  // Too short a stretch to measure: no measurement.
+  // Too short a stretch to measure, or not a stretch at all (every stamp the same): no measurement.
   EXPECT_EQ(measuredAccelSigma(s, 0, 15, 0.2), 0.0);
+  std::vector<SmootherSample> same = s;
+  for (auto& x : same) x.stamp = 1.0;
+  EXPECT_EQ(measuredAccelSigma(same, 0, same.size(), 0.2), 0.0);
 }
 
 TEST(TrajectorySmoother, UniformMotionIsKeptExactlyAtAnySpacing) {
