@@ -50,6 +50,36 @@ double medianStd(const std::vector<SmootherSample>& s, std::size_t begin, std::s
   return stds.empty() ? 0.0 : median(std::move(stds));
 }
 
+// measuredAccelSigma, with the std that stands for a frame whose own is unknown (the stretch's median).
+double accelOfStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end, double lag_s,
+                      double fallback) {
+  const std::size_t n = end - begin;
+  if (lag_s <= 0.0 || n < 3) return 0.0;
+  std::vector<double> spacings;
+  for (std::size_t i = begin + 1; i < end; ++i) spacings.push_back(s[i].stamp - s[i - 1].stamp);
+  const double spacing = median(spacings);
+  if (!(spacing > 0.0) || lag_s / spacing > static_cast<double>(n)) return 0.0;
+  const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / spacing)));
+  // Too few second differences to take a median of: no measurement (the floor applies).
+  constexpr std::size_t kMinDifferences = 10;
+  if (n < 2 * lag + kMinDifferences) return 0.0;
+  auto var = [&](std::size_t i) {
+    const double sd = known(s[i].std_m) ? s[i].std_m : fallback;
+    return sd * sd;
+  };
+  std::vector<double> per_axis;  // each second difference's squared acceleration per axis, less its noise
+  for (std::size_t i = begin + lag; i + lag < end; ++i) {
+    const std::size_t j = i - lag, k = i + lag;
+    const double t0 = s[i].stamp - s[j].stamp, t1 = s[k].stamp - s[i].stamp, span = t0 + t1;
+    if (!(t0 > 0.0 && t1 > 0.0)) continue;  // not a stretch (stamps repeat or step back): no difference
+    const double cj = 2.0 / (t0 * span), ck = 2.0 / (t1 * span), ci = -(cj + ck);
+    const Eigen::Vector3d a = cj * s[j].position + ci * s[i].position + ck * s[k].position;
+    const double noise = cj * cj * var(j) + ci * ci * var(i) + ck * ck * var(k);
+    per_axis.push_back(a.squaredNorm() / 3.0 - noise);
+  }
+  return per_axis.empty() ? 0.0 : std::sqrt(std::max(0.0, median(std::move(per_axis))));
+}
+
 void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
                    const SmootherOptions& options, std::vector<Eigen::Vector3d>& out) {
   const std::size_t n = end - begin;
@@ -57,7 +87,7 @@ void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std:
   const double fallback = medianStd(s, begin, end);
   if (fallback <= 0.0) return;
   const double accel_sigma =
-      std::max(options.accel_sigma, measuredAccelSigma(s, begin, end, options.accel_lag_s));
+      std::max(options.accel_sigma, accelOfStretch(s, begin, end, options.accel_lag_s, fallback));
 
   // Normal equations of sum w_i |p_i - z_i|^2 + sum_k |a_k|^2 / accel_sigma^2, with a_k the acceleration
   // from frames k-1, k, k+1 at their own spacing.
@@ -88,32 +118,7 @@ void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std:
 
 double measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
                           double lag_s) {
-  const std::size_t n = end - begin;
-  if (lag_s <= 0.0 || n < 3) return 0.0;
-  const double fallback = medianStd(s, begin, end);
-  std::vector<double> spacings;
-  for (std::size_t i = begin + 1; i < end; ++i) spacings.push_back(s[i].stamp - s[i - 1].stamp);
-  const double spacing = median(spacings);
-  if (!(spacing > 0.0) || lag_s / spacing > static_cast<double>(n)) return 0.0;
-  const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / spacing)));
-  // Too few second differences to take a median of: no measurement (the floor applies).
-  constexpr std::size_t kMinDifferences = 10;
-  if (n < 2 * lag + kMinDifferences) return 0.0;
-  auto var = [&](std::size_t i) {
-    const double sd = known(s[i].std_m) ? s[i].std_m : fallback;
-    return sd * sd;
-  };
-  std::vector<double> per_axis;  // each second difference's squared acceleration per axis, less its noise
-  for (std::size_t i = begin + lag; i + lag < end; ++i) {
-    const std::size_t j = i - lag, k = i + lag;
-    const double t0 = s[i].stamp - s[j].stamp, t1 = s[k].stamp - s[i].stamp, span = t0 + t1;
-    if (!(t0 > 0.0 && t1 > 0.0)) continue;  // not a stretch (stamps repeat or step back): no difference
-    const double cj = 2.0 / (t0 * span), ck = 2.0 / (t1 * span), ci = -(cj + ck);
-    const Eigen::Vector3d a = cj * s[j].position + ci * s[i].position + ck * s[k].position;
-    const double noise = cj * cj * var(j) + ci * ci * var(i) + ck * ck * var(k);
-    per_axis.push_back(a.squaredNorm() / 3.0 - noise);
-  }
-  return per_axis.empty() ? 0.0 : std::sqrt(std::max(0.0, median(std::move(per_axis))));
+  return accelOfStretch(s, begin, end, lag_s, medianStd(s, begin, end));
 }
 
 std::vector<Eigen::Vector3d> smoothPositions(const std::vector<SmootherSample>& samples,

@@ -28,13 +28,13 @@ struct SmootherOptions {
   double max_gap_s = 0.5;    // frames further apart than this are not linked
 };
 
-// The smoothed positions, one per sample, in order. A frame whose std is unknown is weighed as its
-// stretch's median; a stretch of fewer than 3 frames, or without any known std, is left as it is.
 // The camera's acceleration per axis (RMS, m/s^2) in samples [begin, end), measured by second differences
 // over lag_s with the frames' own noise taken out; 0 when the stretch is too short to tell.
 double measuredAccelSigma(const std::vector<SmootherSample>& samples, std::size_t begin, std::size_t end,
                           double lag_s);
 
+// The smoothed positions, one per sample, in order. A frame whose std is unknown is weighed as its
+// stretch's median; a stretch of fewer than 3 frames, or without any known std, is left as it is.
 std::vector<Eigen::Vector3d> smoothPositions(const std::vector<SmootherSample>& samples,
                                              const SmootherOptions& options);
 
