@@ -61,6 +61,7 @@ SyntheticSceneConfig syntheticSceneFromConfig(const Config& s) {
   c.base_pitch_deg = s.get("base_pitch_deg", c.base_pitch_deg);
   c.rotation_amplitude_deg = triple(s, "rotation_amplitude_deg", c.rotation_amplitude_deg);
   c.rotation_period = triple(s, "rotation_period", c.rotation_period);
+  c.camera_ramp_s = s.get("camera_ramp_s", c.camera_ramp_s);
 
   const std::string scenario = s.get<std::string>("scenario", toString(c.scenario));
   try {

@@ -92,8 +92,11 @@ CameraMotion cameraMotion(const SyntheticSceneConfig& config) {
 }
 
 SE3 cameraPoseAt(const SyntheticSceneConfig& c, const CameraMotion& m, double t) {
+  // A camera ramped in starts at rest, as a hand-held one usually does (smoothstep: no jump in velocity).
+  const double x = c.camera_ramp_s > 0 ? std::clamp(t / c.camera_ramp_s, 0.0, 1.0) : 1.0;
+  const double ramp = x * x * (3 - 2 * x);
   const auto wave = [&](double amplitude, double period, double phase) {
-    return period > 0 ? amplitude * std::sin(2 * kPi * t / period + phase) : 0.0;
+    return period > 0 ? ramp * amplitude * std::sin(2 * kPi * t / period + phase) : 0.0;
   };
   Eigen::Vector3d position;
   for (int i = 0; i < 3; ++i)

@@ -60,6 +60,7 @@ void validate(const SyntheticSceneConfig& c) {
   if (c.max_depth <= 0 || c.max_depth * c.camera.depth_scale > 65535)
     fail("max_depth * depth_scale must fit 16 bits");
   if (c.depth_noise < 0 || c.color_noise < 0) fail("noise levels must not be negative");
+  if (c.camera_ramp_s < 0) fail("camera_ramp_s must be >= 0");
   if (c.exposure_s < 0 || c.exposure_s * c.fps > 1.0)
     fail("exposure_s must be in [0, 1 / fps]: a frame's exposure cannot outlast it");
   if (c.exposure_samples < 2 || c.exposure_samples > 64) fail("exposure_samples must be in [2, 64]");

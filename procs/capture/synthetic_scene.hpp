@@ -61,6 +61,7 @@ struct SyntheticSceneConfig {
   double base_pitch_deg = -8.0;                                  // negative looks down
   std::array<double, 3> rotation_amplitude_deg{18.0, 8.0, 6.0};  // yaw, pitch, roll
   std::array<double, 3> rotation_period{9.0, 6.5, 8.0};          // s
+  double camera_ramp_s = 0.0;  // s; > 0: the sinusoids grow from rest to their amplitudes over this time
 
   SyntheticScenario scenario = SyntheticScenario::kBoxes;
   int num_moving_objects = 2;                          // boxes, or people in people_walking

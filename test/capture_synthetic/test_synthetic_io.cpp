@@ -15,6 +15,7 @@
 #include "bmp/common/tum_trajectory.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/synthetic_config.hpp"
+#include "capture/synthetic_geometry.hpp"
 #include "capture/synthetic_source.hpp"
 #include "capture/tum_folder_writer.hpp"
 #include "capture/tum_source.hpp"
@@ -69,6 +70,7 @@ TEST(SyntheticConfig, ShippedFileIsCompleteAndMatchesTheDefaults) {
   EXPECT_EQ(c.max_depth, d.max_depth);
   EXPECT_EQ(c.depth_noise, d.depth_noise);
   EXPECT_EQ(c.color_noise, d.color_noise);
+  EXPECT_EQ(c.camera_ramp_s, d.camera_ramp_s);
   EXPECT_EQ(c.exposure_s, d.exposure_s);
   EXPECT_EQ(c.exposure_samples, d.exposure_samples);
 }
@@ -110,6 +112,31 @@ TEST(SyntheticConfig, ReadsOverridesAndRejectsBadValues) {
 
 // Motion blur: the colour image is smeared along the motion (less fine detail), the depth, masks, pose and
 // the image's mean brightness stay the stamp's; a camera at rest is not blurred at all.
+// A ramped-in camera starts at rest at the path's centre (the scene starts as a hand-held recording
+// usually does) and moves exactly as the unramped one once the ramp is over.
+TEST(SyntheticOptions, ARampedCameraStartsAtRestThenMovesAsWithoutTheRamp) {
+  SyntheticSceneConfig plain;
+  plain.camera_period = {1.5, 1.2, 1.0};
+  SyntheticSceneConfig ramped = plain;
+  ramped.camera_ramp_s = 1.0;
+  const synth::CameraMotion motion = synth::cameraMotion(plain);
+  const double dt = 1e-3;
+  const Eigen::Vector3d p0 = synth::cameraPoseAt(ramped, motion, 0.0).translation();
+  const Eigen::Vector3d p1 = synth::cameraPoseAt(ramped, motion, dt).translation();
+  EXPECT_LT((p0 - Eigen::Map<const Eigen::Vector3d>(plain.camera_centre.data())).norm(), 1e-12);
+  EXPECT_LT((p1 - p0).norm() / dt, 0.01) << "m/s at the start";
+  EXPECT_GT((synth::cameraPoseAt(plain, motion, dt).translation() -
+             synth::cameraPoseAt(plain, motion, 0.0).translation())
+                    .norm() /
+                dt,
+            0.1);
+  for (double t : {1.0, 1.7, 3.2})
+    EXPECT_TRUE(synth::cameraPoseAt(ramped, motion, t).isApprox(synth::cameraPoseAt(plain, motion, t), 1e-12))
+        << t;
+  ramped.camera_ramp_s = -1.0;
+  EXPECT_THROW(SyntheticScene{ramped}, std::invalid_argument);
+}
+
 TEST(SyntheticOptions, ExposureBlursTheColourImageOnly) {
   SyntheticSceneConfig sharp = shortSequence(40);
   sharp.color_noise = 0.0;
