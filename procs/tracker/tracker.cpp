@@ -112,7 +112,8 @@ TrackResult Tracker::track(const TrackerInput& input) {
         if (state_ == TrackingState::kOk) {
           velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
           velocity_dt_ = frame.stamp - last_frame_.stamp;
-          motion_prior_.observe(last_frame_.center(), frame.center(), velocity_dt_);
+          motion_prior_.observe(last_frame_.center(), velocity_dt_,
+                                {frame.stamp, frame.center(), frame.position_std_m, false});
         } else {
           forgetMotion();
         }

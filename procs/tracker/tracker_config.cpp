@@ -119,6 +119,11 @@ PoseOptimizerOptions poseOptions(const Config& c) {
   o.motion_prior_velocity_gain = c.get<double>("motion_prior_velocity_gain", o.motion_prior_velocity_gain);
   c.check(o.motion_prior_velocity_gain > 0.0 && o.motion_prior_velocity_gain <= 1.0,
           "motion_prior_velocity_gain", "must be in (0, 1]");
+  readAtLeast(c, "motion_prior_accel_lag_s", o.motion_prior_accel_lag_s, 0.0);
+  readAtLeast(c, "motion_prior_accel_unmeasured", o.motion_prior_accel_unmeasured, 0.0);
+  o.motion_prior_accel_window_s = c.get<double>("motion_prior_accel_window_s", o.motion_prior_accel_window_s);
+  c.check(o.motion_prior_accel_window_s > 2.0 * o.motion_prior_accel_lag_s, "motion_prior_accel_window_s",
+          "must be longer than twice motion_prior_accel_lag_s");
   o.young_point_weight = c.get<double>("young_point_weight", o.young_point_weight);
   c.check(o.young_point_weight > 0.0 && o.young_point_weight <= 1.0, "young_point_weight",
           "must be in (0, 1]");

@@ -81,6 +81,12 @@ struct PoseOptimizerOptions {
   // of this size gives (m/s^2; 0: no prior): a / 2 dt^2, 4.5 mm at 30 Hz (motion_prior.hpp says why).
   double motion_prior_accel = 9.0;
   double motion_prior_velocity_gain = 0.3;  // each tracked frame's velocity enters the predicting one so
+  // A camera that moves harder than motion_prior_accel has its acceleration measured over this lag (s; 0:
+  // motion_prior_accel always) from the frames tracked in the last window, and the spread widened to it;
+  // until the window has frames enough to measure, the spread stands for motion_prior_accel_unmeasured.
+  double motion_prior_accel_lag_s = 0.2;
+  double motion_prior_accel_window_s = 1.5;
+  double motion_prior_accel_unmeasured = 18.0;
 };
 
 struct KeyframeOptions {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 namespace bmp::tracker {
 namespace {
@@ -51,18 +52,18 @@ double medianStd(const std::vector<SmootherSample>& s, std::size_t begin, std::s
 }
 
 // measuredAccelSigma, with the std that stands for a frame whose own is unknown (the stretch's median).
-double accelOfStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end, double lag_s,
-                      double fallback) {
+std::optional<double> accelOfStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
+                                     double lag_s, double fallback) {
   const std::size_t n = end - begin;
-  if (lag_s <= 0.0 || n < 3) return 0.0;
+  if (lag_s <= 0.0 || n < 3) return std::nullopt;
   std::vector<double> spacings;
   for (std::size_t i = begin + 1; i < end; ++i) spacings.push_back(s[i].stamp - s[i - 1].stamp);
   const double spacing = median(spacings);
-  if (!(spacing > 0.0) || lag_s / spacing > static_cast<double>(n)) return 0.0;
+  if (!(spacing > 0.0) || lag_s / spacing > static_cast<double>(n)) return std::nullopt;
   const auto lag = static_cast<std::size_t>(std::max(1.0, std::round(lag_s / spacing)));
   // Too few second differences to take a median of: no measurement (the floor applies).
   constexpr std::size_t kMinDifferences = 10;
-  if (n < 2 * lag + kMinDifferences) return 0.0;
+  if (n < 2 * lag + kMinDifferences) return std::nullopt;
   auto var = [&](std::size_t i) {
     const double sd = known(s[i].std_m) ? s[i].std_m : fallback;
     return sd * sd;
@@ -77,7 +78,8 @@ double accelOfStretch(const std::vector<SmootherSample>& s, std::size_t begin, s
     const double noise = cj * cj * var(j) + ci * ci * var(i) + ck * ck * var(k);
     per_axis.push_back(a.squaredNorm() / 3.0 - noise);
   }
-  return per_axis.empty() ? 0.0 : std::sqrt(std::max(0.0, median(std::move(per_axis))));
+  if (per_axis.empty()) return std::nullopt;
+  return std::sqrt(std::max(0.0, median(std::move(per_axis))));
 }
 
 void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
@@ -86,8 +88,8 @@ void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std:
   if (n < 3) return;
   const double fallback = medianStd(s, begin, end);
   if (fallback <= 0.0) return;
-  const double accel_sigma =
-      std::max(options.accel_sigma, accelOfStretch(s, begin, end, options.accel_lag_s, fallback));
+  const double accel_sigma = std::max(
+      options.accel_sigma, accelOfStretch(s, begin, end, options.accel_lag_s, fallback).value_or(0.0));
 
   // Normal equations of sum w_i |p_i - z_i|^2 + sum_k |a_k|^2 / accel_sigma^2, with a_k the acceleration
   // from frames k-1, k, k+1 at their own spacing.
@@ -116,8 +118,8 @@ void smoothStretch(const std::vector<SmootherSample>& s, std::size_t begin, std:
 
 }  // namespace
 
-double measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begin, std::size_t end,
-                          double lag_s) {
+std::optional<double> measuredAccelSigma(const std::vector<SmootherSample>& s, std::size_t begin,
+                                         std::size_t end, double lag_s) {
   return accelOfStretch(s, begin, end, lag_s, medianStd(s, begin, end));
 }
 

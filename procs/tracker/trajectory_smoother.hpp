@@ -9,6 +9,7 @@
 // beside it, and that is used instead, so a fast camera's real motion is not smoothed away. Orientation is
 // not changed. A stretch ends where tracking was lost (the next frame relocalised), where the stamps go back
 // or jump more than max_gap_s: no motion links the frames across such a break.
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,9 +30,9 @@ struct SmootherOptions {
 };
 
 // The camera's acceleration per axis (RMS, m/s^2) in samples [begin, end), measured by second differences
-// over lag_s with the frames' own noise taken out; 0 when the stretch is too short to tell.
-double measuredAccelSigma(const std::vector<SmootherSample>& samples, std::size_t begin, std::size_t end,
-                          double lag_s);
+// over lag_s with the frames' own noise taken out; none when the stretch is too short to tell.
+std::optional<double> measuredAccelSigma(const std::vector<SmootherSample>& samples, std::size_t begin,
+                                         std::size_t end, double lag_s);
 
 // The smoothed positions, one per sample, in order. A frame whose std is unknown is weighed as its
 // stretch's median; a stretch of fewer than 3 frames, or without any known std, is left as it is.

@@ -296,10 +296,12 @@ TEST(MotionPrior, PredictsFromTheSmoothedVelocityWithinHalfAccelerationTimesDtSq
   PoseOptimizerOptions options;
   options.motion_prior_accel = 10.0;
   options.motion_prior_velocity_gain = 0.5;
+  options.motion_prior_accel_lag_s = 0.0;  // the floor always (the measured spread: the test below)
   MotionPrior motion(options);
   EXPECT_FALSE(motion.predict(Eigen::Vector3d::Zero(), 0.1)) << "no velocity yet";
-  motion.observe(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0, 0), 0.1);     // 1 m/s
-  motion.observe(Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.4, 0, 0), 0.1);  // 3 m/s: blended to 2
+  motion.observe(Eigen::Vector3d::Zero(), 0.1, {0.1, Eigen::Vector3d(0.1, 0, 0), 0.001, false});  // 1 m/s
+  motion.observe(Eigen::Vector3d(0.1, 0, 0), 0.1,
+                 {0.2, Eigen::Vector3d(0.4, 0, 0), 0.001, false});  // 3: to 2
   const auto prior = motion.predict(Eigen::Vector3d(0.4, 0, 0), 0.05);
   ASSERT_TRUE(prior);
   EXPECT_NEAR((prior->center - Eigen::Vector3d(0.5, 0, 0)).norm(), 0.0, 1e-12);
@@ -308,8 +310,75 @@ TEST(MotionPrior, PredictsFromTheSmoothedVelocityWithinHalfAccelerationTimesDtSq
   EXPECT_FALSE(motion.predict(Eigen::Vector3d::Zero(), 0.05));
   options.motion_prior_accel = 0.0;  // off
   MotionPrior off(options);
-  off.observe(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0, 0), 0.1);
+  off.observe(Eigen::Vector3d::Zero(), 0.1, {0.1, Eigen::Vector3d(0.1, 0, 0), 0.001, false});
   EXPECT_FALSE(off.predict(Eigen::Vector3d::Zero(), 0.05));
+}
+
+// A camera moving along sinusoids of 1-1.6 s periods per axis (amplitude_m each), tracked at 30 Hz with
+// 2 mm noise: how many of the frames after the first window the prediction misses by more than 3 sigma on
+// some axis, and the acceleration the spread stood for at the end.
+struct PriorOnSinusoids {
+  double missed_share = 0.0;
+  double accel = 0.0;
+};
+
+PriorOnSinusoids priorOnSinusoids(const PoseOptimizerOptions& options, double amplitude_m) {
+  const Eigen::Vector3d omega(2.0 * M_PI / 1.0, 2.0 * M_PI / 1.3, 2.0 * M_PI / 1.6);
+  auto at = [&](double t) {
+    return Eigen::Vector3d(amplitude_m * std::sin(omega.x() * t), amplitude_m * std::sin(omega.y() * t + 1.0),
+                           amplitude_m * std::sin(omega.z() * t + 2.0));
+  };
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  MotionPrior motion(options);
+  const double dt = 1.0 / 30.0;
+  Eigen::Vector3d last = at(0.0);
+  int judged = 0, missed = 0;
+  for (int i = 1; i < 150; ++i) {
+    const double t = i * dt;
+    const Eigen::Vector3d truth = at(t);
+    const auto prior = motion.predict(last, dt);
+    if (t > options.motion_prior_accel_window_s && prior) {
+      ++judged;
+      missed += ((truth - prior->center).cwiseAbs().array() > 3.0 * prior->sigma_m).any();
+    }
+    const Eigen::Vector3d tracked = truth + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    motion.observe(last, dt, {t, tracked, 0.002, false});
+    last = tracked;
+  }
+  return {judged > 0 ? static_cast<double>(missed) / judged : 1.0, motion.accel()};
+}
+
+// A shaken camera (5 m/s^2 RMS here) is missed by the smoothed-velocity prediction by far more than the
+// floor's spread: held to it, the tracker was pulled off its path (shaken_camera: 11 cm). Its measured
+// acceleration widens the spread to what the prediction misses by; a gentle camera keeps the floor exactly.
+TEST(MotionPrior, ACameraShakenHarderThanTheFloorWidensTheSpreadToItsMisses) {
+  PoseOptimizerOptions options;  // the defaults: 9 m/s^2 floor, gain 0.3, measured over 0.2 s in 1.5 s
+  PoseOptimizerOptions floor_only = options;
+  floor_only.motion_prior_accel_lag_s = 0.0;
+  const PriorOnSinusoids held = priorOnSinusoids(floor_only, 0.15);
+  const PriorOnSinusoids measured = priorOnSinusoids(options, 0.15);
+  EXPECT_DOUBLE_EQ(held.accel, options.motion_prior_accel);
+  EXPECT_GT(held.missed_share, 0.3);
+  EXPECT_GT(measured.accel, 1.5 * options.motion_prior_accel);
+  EXPECT_LT(measured.missed_share, 0.05) << held.missed_share;
+  // 1 cm sinusoids: about 0.6 m/s^2, well under the floor, which is kept as it is.
+  const PriorOnSinusoids gentle = priorOnSinusoids(options, 0.01);
+  EXPECT_DOUBLE_EQ(gentle.accel, options.motion_prior_accel);
+  EXPECT_LT(gentle.missed_share, 0.05);
+
+  // Before the window holds frames enough, the camera's motion is not known: the spread is the unmeasured
+  // one, and after a loss (reset) it is again.
+  MotionPrior motion(options);
+  for (int i = 1; i <= 20; ++i)
+    motion.observe(Eigen::Vector3d::Zero(), 1.0 / 30.0, {i / 30.0, Eigen::Vector3d::Zero(), 0.002, false});
+  EXPECT_DOUBLE_EQ(motion.accel(), options.motion_prior_accel_unmeasured);
+  for (int i = 21; i <= 60; ++i)
+    motion.observe(Eigen::Vector3d::Zero(), 1.0 / 30.0, {i / 30.0, Eigen::Vector3d::Zero(), 0.002, false});
+  EXPECT_DOUBLE_EQ(motion.accel(), options.motion_prior_accel);
+  motion.reset();
+  motion.observe(Eigen::Vector3d::Zero(), 1.0 / 30.0, {3.0, Eigen::Vector3d::Zero(), 0.002, false});
+  EXPECT_DOUBLE_EQ(motion.accel(), options.motion_prior_accel_unmeasured);
 }
 
 }  // namespace

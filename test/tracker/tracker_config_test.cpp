@@ -83,6 +83,9 @@ void printMatcherAndPose(const TrackerConfig& c, FieldPrinter& put) {
   put("pose_optimizer.young_point_weight", p.young_point_weight);
   put("pose_optimizer.motion_prior_accel", p.motion_prior_accel);
   put("pose_optimizer.motion_prior_velocity_gain", p.motion_prior_velocity_gain);
+  put("pose_optimizer.motion_prior_accel_lag_s", p.motion_prior_accel_lag_s);
+  put("pose_optimizer.motion_prior_accel_window_s", p.motion_prior_accel_window_s);
+  put("pose_optimizer.motion_prior_accel_unmeasured", p.motion_prior_accel_unmeasured);
 }
 
 void printKeyframesMappingReloc(const TrackerConfig& c, FieldPrinter& put) {
@@ -232,6 +235,9 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"pose_optimizer: {young_point_weight: 0}", "pose_optimizer.young_point_weight"},
       {"pose_optimizer: {motion_prior_accel: -1}", "pose_optimizer.motion_prior_accel"},
       {"pose_optimizer: {motion_prior_velocity_gain: 0}", "pose_optimizer.motion_prior_velocity_gain"},
+      {"pose_optimizer: {motion_prior_accel_lag_s: -0.1}", "pose_optimizer.motion_prior_accel_lag_s"},
+      {"pose_optimizer: {motion_prior_accel_window_s: 0.3}", "pose_optimizer.motion_prior_accel_window_s"},
+      {"pose_optimizer: {motion_prior_accel_unmeasured: -1}", "pose_optimizer.motion_prior_accel_unmeasured"},
       {"keyframes: {ref_ratio: 1.5}", "keyframes.ref_ratio"},
       {"keyframes: {revisit_angle_deg: 200}", "keyframes.revisit_angle_deg"},
       {"keyframes: {revisit_distance_m: -1}", "keyframes.revisit_distance_m"},
