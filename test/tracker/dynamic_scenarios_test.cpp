@@ -364,7 +364,7 @@ TEST(DynamicScenario, AShakenCameraIsNotHeldToTheMotionPriorsFloor) {
   const Score with_floor = run("shaken_camera", DynamicMode::kGeometric, 0.25, {}, floor_only);
   const Score measured = run("shaken_camera", DynamicMode::kGeometric, 0.25);
   EXPECT_EQ(measured.lost, 0);
-  EXPECT_LT(measured.ate, 0.85 * with_floor.ate) << with_floor.ate;  // 2.76 against 3.70 mm
+  EXPECT_LT(measured.ate, 0.85 * with_floor.ate) << with_floor.ate;  // 2.84 against 3.70 mm
 }
 
 }  // namespace
