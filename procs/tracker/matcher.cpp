@@ -49,6 +49,7 @@ bool isRealPoint(const std::shared_ptr<MapPoint>& mp) {
 struct Projection {
   Eigen::Vector2d uv;
   double u_right = 0.0;
+  double depth = 0.0;  // metres along the optical axis
 };
 
 // Nothing when the point is behind the camera or outside the image.
@@ -58,7 +59,7 @@ std::optional<Projection> project(const SE3& T_cam_world, const Eigen::Vector3d&
   if (p_cam.z() <= 0.0) return std::nullopt;
   const Eigen::Vector2d uv = g.project(p_cam);
   if (!g.inBounds(uv.x(), uv.y())) return std::nullopt;
-  return Projection{uv, uv.x() - g.bf / p_cam.z()};
+  return Projection{uv, uv.x() - g.bf / p_cam.z(), p_cam.z()};
 }
 
 // Whether the view sees the point within the distances its descriptor was made for.
@@ -76,7 +77,8 @@ struct SearchWindow {
   int min_level = -1, max_level = -1;  // as Features::forEachInArea
   Gate gate = Gate::kTracking;
   const std::vector<std::shared_ptr<MapPoint>>* occupied = nullptr;  // kTracking: the view's matches
-  double chi2 = 0.0;                                                 // kReprojection
+  double depth_ratio = 0.0;  // kTracking: TrackingOptions::match_depth_ratio (0: no depth gate)
+  double chi2 = 0.0;         // kReprojection
 };
 
 struct SearchResult {
@@ -95,7 +97,11 @@ bool passesGate(const Features& f, const FrameGeometry& g, const Projection& p, 
     return !(e2 * g.pyramid.inv_sigma2[f.level(j)] > w.chi2);
   }
   if (isRealPoint((*w.occupied)[j])) return false;
-  return !(f.depth[j] > 0 && std::abs(p.u_right - f.uRight(g, j)) > w.radius);
+  if (f.depth[j] <= 0) return true;
+  // The right-image gate scales with the pyramid level and, at a virtual baseline, barely tells 2 m from
+  // 3.5 m at coarse levels: a person's keypoint took the wall point behind it, and its static history.
+  if (w.depth_ratio > 0 && std::abs(f.depth[j] - p.depth) > w.depth_ratio * p.depth) return false;
+  return std::abs(p.u_right - f.uRight(g, j)) <= w.radius;
 }
 
 // The keypoints nearest in descriptor to a projected point among those in the window that pass the gate.
@@ -138,6 +144,7 @@ int matchFromLastFrame(Frame& cur, const Frame& last, const FrameGeometry& g, co
     w.min_level = std::max(0, level - 1);
     w.max_level = level + 1;
     w.occupied = &cur.points;
+    w.depth_ratio = o.match_depth_ratio;
     const SearchResult s = searchByProjection(fc, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
     if (s.best < 0 || s.best_dist > o.match_threshold_high) continue;
     cur.points[s.best] = mp;
@@ -181,6 +188,7 @@ int matchLocalPoints(Frame& cur, const std::vector<std::shared_ptr<MapPoint>>& p
     w.min_level = level - 1;
     w.max_level = level;
     w.occupied = &cur.points;
+    w.depth_ratio = o.match_depth_ratio;
     const SearchResult s = searchByProjection(f, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
     if (s.best < 0 || s.best_dist > o.match_threshold_high) continue;
     if (s.best_level == s.second_level && s.best_dist > o.local_match_ratio * s.second_dist) continue;

@@ -78,6 +78,7 @@ TrackingOptions trackingOptions(const Config& c) {
   c.check(o.match_threshold_low <= o.match_threshold_high, "match_threshold_low",
           "must not exceed match_threshold_high");
   readIn(c, "local_match_ratio", o.local_match_ratio, 0.0, 1.0);
+  readIn(c, "match_depth_ratio", o.match_depth_ratio, 0.0, 1.0);
   readIn(c, "descriptor_match_ratio", o.descriptor_match_ratio, 0.0, 1.0);
   read(c, "check_orientation", o.check_orientation);
   readAtLeast(c, "min_matches_motion", o.min_matches_motion, 0);

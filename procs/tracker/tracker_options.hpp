@@ -27,12 +27,15 @@ struct TrackingOptions {
   // keyframe). Compared without slack: 3 dropped frames make 3.99-4.01 intervals as stamps jitter. 4.5 and
   // 6.5 (every burst of up to 3 or 5 guessed) were no better over Bonn with dropped frames (README).
   double motion_max_scale = 4.0;
-  int motion_search_radius = 7;          // pixels at level 0, projection from the last frame
-  int local_search_radius = 3;           // pixels at level 0, projection of the local map
-  int reloc_search_radius = 5;           // local map radius in the frames just after relocalisation
-  int match_threshold_high = 100;        // Hamming distance accepted for projection matches
-  int match_threshold_low = 50;          // stricter threshold for descriptor-only matches
-  double local_match_ratio = 0.8;        // best / second best (same level) in local map search
+  int motion_search_radius = 7;    // pixels at level 0, projection from the last frame
+  int local_search_radius = 3;     // pixels at level 0, projection of the local map
+  int reloc_search_radius = 5;     // local map radius in the frames just after relocalisation
+  int match_threshold_high = 100;  // Hamming distance accepted for projection matches
+  int match_threshold_low = 50;    // stricter threshold for descriptor-only matches
+  double local_match_ratio = 0.8;  // best / second best (same level) in local map search
+  // A keypoint whose depth differs from the projected point's by more than this share of it is not that
+  // point: an occluder in front of it (a person before the wall) or what is there since it went (0: off).
+  double match_depth_ratio = 0.08;
   double descriptor_match_ratio = 0.75;  // Lowe ratio for keyframe and relocalisation matching
   bool check_orientation = true;         // rotation histogram consistency in frame-to-frame matches
   int min_matches_motion = 20;           // matches needed before optimising the motion-model pose

@@ -49,6 +49,7 @@ void printOrbAndTracking(const TrackerConfig& c, FieldPrinter& put) {
   put("tracking.match_threshold_high", t.match_threshold_high);
   put("tracking.match_threshold_low", t.match_threshold_low);
   put("tracking.local_match_ratio", t.local_match_ratio);
+  put("tracking.match_depth_ratio", t.match_depth_ratio);
   put("tracking.descriptor_match_ratio", t.descriptor_match_ratio);
   put("tracking.check_orientation", t.check_orientation);
   put("tracking.min_matches_motion", t.min_matches_motion);
@@ -227,6 +228,7 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"orb: {num_levels: 0}", "orb.num_levels"},
       {"orb: {scale_factor: 2.5}", "orb.scale_factor"},
       {"tracking: {local_match_ratio: 1.5}", "tracking.local_match_ratio"},
+      {"tracking: {match_depth_ratio: -0.1}", "tracking.match_depth_ratio"},
       {"tracking: {motion_search_radius: 0}", "tracking.motion_search_radius"},
       {"tracking: {motion_max_scale: 0.5}", "tracking.motion_max_scale"},
       {"matcher: {fuse_max_distance: 300}", "matcher.fuse_max_distance"},
