@@ -4,6 +4,7 @@
 // depth_utime color_bytes depth_bytes decoded(0/1)".
 #include <chrono>
 #include <fstream>
+#include <set>
 #include <thread>
 
 #include <bmp/detections_t.hpp>
@@ -43,11 +44,17 @@ int run(ProcessContext& ctx) {
   const long long expect = ctx.args.integer("expect");
   long long received = 0;
   long long ignore_once = ctx.args.integer("ignore-once");
+  // bmp-capture resends a frame whose answer is late (a loaded machine): answered again, reported once, as
+  // the real consumers do, so a report lists each frame once.
+  std::set<std::pair<long long, long long>> reported;
+  long long resent = 0;
   ctx.lcm.subscribe<rgbd_frame_t>("RGBD_FRAME", [&](const rgbd_frame_t& msg, const ReceivedInfo&) {
     if (msg.seq == ignore_once) {
       ignore_once = -1;
       return;
     }
+    const bool again = !reported.insert({msg.seq, msg.utime}).second;
+    resent += again;
     bool decoded = true;
     if (decode) {
       try {
@@ -58,10 +65,12 @@ int run(ProcessContext& ctx) {
         decoded = false;
       }
     }
-    report << msg.seq << " " << msg.utime << " " << msg.depth_utime << " " << msg.color.size << " "
-           << msg.depth.size << " " << (decoded ? 1 : 0) << "\n";
-    ++received;
-    ctx.status.received();
+    if (!again) {
+      report << msg.seq << " " << msg.utime << " " << msg.depth_utime << " " << msg.color.size << " "
+             << msg.depth.size << " " << (decoded ? 1 : 0) << "\n";
+      ++received;
+      ctx.status.received();
+    }
     if ((ack || ack_detections) && ack_delay.count() > 0) std::this_thread::sleep_for(ack_delay);
     if (ack_detections) {
       detections_t answer{};
@@ -91,7 +100,7 @@ int run(ProcessContext& ctx) {
     while (std::chrono::steady_clock::now() < quiet_until && before == received) ctx.lcm.handle(50);
   }
   report.flush();
-  log::info("received ", received, " frames");
+  log::info("received ", received, " frames (", resent, " resent)");
   return 0;
 }
 
