@@ -56,7 +56,7 @@ int run(ProcessContext& ctx) {
     const bool again = !reported.insert({msg.seq, msg.utime}).second;
     resent += again;
     bool decoded = true;
-    if (decode) {
+    if (decode && !again) {  // a resend's images were checked on its first arrival
       try {
         decodeImage(fromMsg(msg.color));
         decodeImage(fromMsg(msg.depth));
