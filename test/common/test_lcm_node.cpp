@@ -4,6 +4,7 @@
 
 #include "bmp/lcm/conversions.hpp"
 #include "bmp/lcm/lcm_node.hpp"
+#include "lcm_url.hpp"
 
 namespace bmp {
 namespace {
@@ -16,6 +17,32 @@ TEST(LcmNode, ReceiveBufferLargerThanTheKernelAllowsIsWarned) {
   EXPECT_EQ(receiveBufferWarning(url, 4194304), "");
   EXPECT_EQ(receiveBufferWarning("udpm://239.255.76.67:7667?ttl=0", 212992), "");  // asks for nothing
   EXPECT_EQ(receiveBufferWarning("memq://", 1), "");
+}
+
+// A udpm URL without a receive buffer would get the kernel's 208 KiB, and a 640x480 frame (about 1 MB)
+// would be lost whenever it arrives faster than it is read.
+TEST(LcmNode, AUdpmUrlWithoutAReceiveBufferGetsTheDefaultOne) {
+  EXPECT_EQ(withReceiveBuffer("udpm://239.255.76.67:7691?ttl=0"),
+            "udpm://239.255.76.67:7691?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(withReceiveBuffer("udpm://239.255.76.67:7691"),
+            "udpm://239.255.76.67:7691?recv_buf_size=4194304");
+  EXPECT_EQ(withReceiveBuffer("udpm://239.255.76.67:7691?"),
+            "udpm://239.255.76.67:7691?recv_buf_size=4194304");
+  // A size the user chose, and other providers, are left alone.
+  EXPECT_EQ(withReceiveBuffer("udpm://239.255.76.67:7691?recv_buf_size=65536&ttl=1"),
+            "udpm://239.255.76.67:7691?recv_buf_size=65536&ttl=1");
+  EXPECT_EQ(withReceiveBuffer("memq://"), "memq://");
+  EXPECT_EQ(withReceiveBuffer("file:///tmp/x.lcmlog?mode=r"), "file:///tmp/x.lcmlog?mode=r");
+  // The default URL already names the default size, so it is its own completion.
+  EXPECT_EQ(withReceiveBuffer(kDefaultLcmUrl), kDefaultLcmUrl);
+  EXPECT_NE(std::string(kDefaultLcmUrl).find("recv_buf_size=" + std::to_string(kDefaultReceiveBufferBytes)),
+            std::string::npos);
+  EXPECT_EQ(resolveLcmUrl("udpm://239.255.76.67:7691?ttl=0"),
+            "udpm://239.255.76.67:7691?ttl=0&recv_buf_size=4194304");
+  // LCM takes the completed form of a bare address.
+  const std::string url = test::uniqueLcmUrl(0);
+  const std::string bare = url.substr(0, url.find('?'));
+  EXPECT_NO_THROW(LcmNode(withReceiveBuffer(bare), [](const std::string&) {}));
 }
 
 TEST(LcmNode, TypedRoundTripOverMemq) {

@@ -9,9 +9,17 @@
 namespace bmp {
 
 std::string resolveLcmUrl(const std::string& command_line_url) {
-  if (!command_line_url.empty()) return command_line_url;
-  if (const char* env = std::getenv("LCM_DEFAULT_URL"); env != nullptr && *env != '\0') return env;
+  if (!command_line_url.empty()) return withReceiveBuffer(command_line_url);
+  if (const char* env = std::getenv("LCM_DEFAULT_URL"); env != nullptr && *env != '\0')
+    return withReceiveBuffer(env);
   return kDefaultLcmUrl;
+}
+
+std::string withReceiveBuffer(const std::string& url) {
+  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
+  const char last = url.back();
+  const char* separator = url.find('?') == std::string::npos ? "?" : (last == '?' || last == '&' ? "" : "&");
+  return url + separator + "recv_buf_size=" + std::to_string(kDefaultReceiveBufferBytes);
 }
 
 std::string receiveBufferWarning(const std::string& url, long rmem_max) {

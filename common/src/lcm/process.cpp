@@ -130,7 +130,8 @@ int runProcess(int argc, char** argv, const ProcessSpec& spec) {
       spec.default_config.empty() ? "" : configDir() + "/" + spec.default_config;
   args.addOption("config", "FILE", "YAML configuration", default_config);
   args.addOption("lcm-url", "URL",
-                 "LCM provider URL; else $LCM_DEFAULT_URL, else " + std::string(kDefaultLcmUrl));
+                 "LCM provider URL; else $LCM_DEFAULT_URL, else " + std::string(kDefaultLcmUrl) +
+                     " (a udpm URL without recv_buf_size gets the default size)");
   args.addFlag("print-config", "print every effective configuration value at start-up");
   if (spec.add_options) spec.add_options(args);
   try {

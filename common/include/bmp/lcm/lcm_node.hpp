@@ -21,9 +21,15 @@ namespace bmp {
 // The URL every process uses unless told otherwise. The 4 MiB receive buffer keeps 640x480 frames from
 // being dropped by the kernel.
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+inline constexpr long kDefaultReceiveBufferBytes = 4194304;  // the size in kDefaultLcmUrl (a test checks)
 
-// --lcm-url if given, else $LCM_DEFAULT_URL, else kDefaultLcmUrl.
+// --lcm-url if given, else $LCM_DEFAULT_URL, else kDefaultLcmUrl; then withReceiveBuffer.
 std::string resolveLcmUrl(const std::string& command_line_url);
+
+// A udpm URL that names no receive buffer gets LCM's, the kernel's small default, and full-size frames are
+// then lost without a word: such a URL gets recv_buf_size=kDefaultReceiveBufferBytes. Other URLs, and udpm
+// URLs that name a size, are returned as they are.
+std::string withReceiveBuffer(const std::string& url);
 
 // The kernel silently caps a socket's receive buffer at net.core.rmem_max: a udpm URL asking for more
 // (recv_buf_size) then gets less, and large frames are lost under load. Returns the warning to give, or ""
