@@ -8,7 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "shared_data.hpp"
+#include "room_rig.hpp"
 #include "tracker/dynamic_stage.hpp"
 #include "tracker/keypoint_tracks.hpp"
 #include "tracker/matcher.hpp"
@@ -22,11 +22,9 @@ constexpr int kStep = 15;  // px the box moves per frame
 struct SlidingBox {
   cv::Mat room, box;
   explicit SlidingBox() {
-    room = cv::imread(test::sharedPath("images/tum_fr3_sitting_xyz_1341845839.214000.png"),
-                      cv::IMREAD_GRAYSCALE);
+    room = test_rig::loadRoom();
     const cv::Mat photo = cv::imread(test::sharedPath("images/bus.jpg"), cv::IMREAD_GRAYSCALE);
     if (room.empty() || photo.empty()) return;
-    cv::resize(room, room, cv::Size(640, 480));
     cv::resize(photo(cv::Rect(0, 0, photo.cols, photo.cols)), box, cv::Size(180, 180));
   }
   cv::Rect where(int frame) const { return {200 + kStep * frame, 150, box.cols, box.rows}; }
@@ -38,17 +36,11 @@ struct SlidingBox {
   }
 };
 
-struct Rig {
-  CameraIntrinsics k;  // 525, 319.5, 239.5, no distortion
-  TrackerConfig config;
-  FrameGeometry g{k, config};
-  OrbExtractor extractor{config.orb};
+struct Rig : test_rig::RoomRig {
   Frame frame(const SlidingBox& s, int i) const {
     cv::Mat gray, depth;
     s.render(i, gray, depth);
-    Frame f(i, i / 30.0, buildFeatures(extractor.extract(gray), depth, g, nullptr, cv::Mat()));
-    f.setPose(SE3::Identity());
-    return f;
+    return RoomRig::frame(i, gray, depth);
   }
 };
 

@@ -7,13 +7,9 @@
 
 #include <memory>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
-#include "shared_data.hpp"
+#include "room_rig.hpp"
 #include "tracker/map_point.hpp"
 #include "tracker/matcher.hpp"
-#include "tracker/orb_extractor.hpp"
 
 namespace bmp::tracker {
 namespace {
@@ -21,23 +17,12 @@ namespace {
 constexpr double kRoomDepth = 4.0, kOccluderDepth = 2.2;
 const cv::Rect kOccluder(200, 120, 240, 240);
 
-struct Rig {
-  CameraIntrinsics k;  // 525, 319.5, 239.5, no distortion
-  TrackerConfig config;
-  FrameGeometry g{k, config};
-  OrbExtractor extractor{config.orb};
-  cv::Mat room;
-  Rig() {
-    room = cv::imread(test::sharedPath("images/tum_fr3_sitting_xyz_1341845839.214000.png"),
-                      cv::IMREAD_GRAYSCALE);
-    if (!room.empty()) cv::resize(room, room, cv::Size(640, 480));
-  }
+struct Rig : test_rig::RoomRig {
+  cv::Mat room = test_rig::loadRoom();
   Frame frame(int seq, bool occluded) const {
     cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(kRoomDepth));
     if (occluded) depth(kOccluder).setTo(kOccluderDepth);
-    Frame f(seq, seq / 30.0, buildFeatures(extractor.extract(room), depth, g, nullptr, cv::Mat()));
-    f.setPose(SE3::Identity());
-    return f;
+    return RoomRig::frame(seq, room, depth);
   }
 };
 
