@@ -118,6 +118,33 @@ TEST(BenchTrackerScore, ABoxLagWithoutTheDetectorIsAnErrorNamingTheOption) {
   }
 }
 
+// --detector-model swaps the detector's model for one run (the paper's 640-pixel input against our 320):
+// the run says which model found its boxes, and a name it does not know, or the option without --detector,
+// is an error naming the option.
+TEST(BenchTrackerScore, TheDetectorModelIsTheOneNamed) {
+  const fs::path folder = writeScenario();
+  const auto bench = [&](std::vector<std::string> extra) {
+    std::vector<std::string> command = {
+        binPath("bmp-bench-tracker"), "--dataset", folder.string(), "--frames", "10", "--inline-mapping"};
+    command.insert(command.end(), extra.begin(), extra.end());
+    return runCommand("detector_model", command, kTimeoutS);
+  };
+  const Outcome full = bench({"--detector", "--detector-model", "yolov5n-640"});
+  ASSERT_EQ(full.status, 0) << full.output;
+  EXPECT_NE(full.output.find("yolov5n_coco_640.onnx, 640 px input"), std::string::npos) << full.output;
+  const Outcome configured = bench({"--detector"});
+  ASSERT_EQ(configured.status, 0) << configured.output;
+  EXPECT_NE(configured.output.find("yolov5n_coco_320.onnx, 320 px input"), std::string::npos)
+      << configured.output;
+  for (const std::vector<std::string>& wrong :
+       {std::vector<std::string>{"--detector", "--detector-model", "yolov9"},
+        std::vector<std::string>{"--detector-model", "yolov5n-640"}}) {
+    const Outcome o = bench(wrong);
+    EXPECT_NE(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("--detector-model"), std::string::npos) << o.output;
+  }
+}
+
 // --drop-bursts drops frames as a real-time tracker that falls behind does, on the real Bonn frames: every
 // frame is either tracked or counted dropped, the same seed drops the same frames (a rare real-time failure
 // becomes one that can be run again), and the tracker keeps tracking across the gaps.

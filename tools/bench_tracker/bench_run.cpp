@@ -149,13 +149,21 @@ struct PassedFrames {
   std::shared_ptr<long long> dropped = std::make_shared<long long>(0);  // by --drop-bursts
 };
 
-// --detector: the detector (config/detector.yaml) over every frame of one pass (at most max_frames, < 0:
-// all), before any tracking, so its time counts nowhere and the tracker runs as fast as without it; frame
-// i of each pass gets boxes[i].
-std::vector<std::vector<ObjectBox>> detectAll(const std::string& dir, int start, int max_frames) {
+// --detector: the detector (config/detector.yaml, its model replaced by --detector-model if given) over
+// every frame of one pass (at most max_frames, < 0: all), before any tracking, so its time counts nowhere and
+// the tracker runs as fast as without it; frame i of each pass gets boxes[i].
+std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const std::string& dir, int start,
+                                              int max_frames) {
   const bmp::Config file = bmp::Config::fromFile(bmp::configDir() + "/detector.yaml");
-  const auto settings = bmp::detector::detectorSettingsFromConfig(file, std::nullopt, bmp::configDir());
+  auto settings = bmp::detector::detectorSettingsFromConfig(file, std::nullopt, bmp::configDir());
   file.finish();
+  try {
+    if (!model.empty()) settings.detector = bmp::detector::withModelPreset(settings.detector, model);
+  } catch (const std::invalid_argument& e) {
+    throw bmp::ArgError(std::string("--detector-model: ") + e.what());
+  }
+  std::fprintf(stderr, "detector: %s, %d px input\n", settings.detector.model_path.c_str(),
+               settings.detector.input_size);
   bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   std::vector<std::vector<ObjectBox>> all;
   FrameProvider frames = tumFolderFrames(dir, start);
@@ -205,6 +213,19 @@ class DropBursts {
   int left_ = 0;
 };
 
+// --box-lag, checked; --detector-model checked as well, as the other option that only --detector uses.
+long long boxLag(const bmp::ArgParser& args, bool detect) {
+  const long long lag = args.integer("box-lag");
+  // 15 frames is 0.5 s at 30 Hz: the oldest a stand-in may be (stale_box_max_age_s) and as long as a keyframe
+  // is held for its late boxes (keyframe_hold_ms).
+  if (lag < 0 || lag > 15) throw bmp::ArgError("--box-lag must be between 0 and 15 frames");
+  if (lag > 0 && !detect)
+    throw bmp::ArgError("--box-lag needs --detector and a dynamic mode other than none");
+  if (!args.value("detector-model").empty() && !detect)
+    throw bmp::ArgError("--detector-model needs --detector and a dynamic mode other than none");
+  return lag;
+}
+
 // detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
 PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect,
                           const DynamicOptions& dynamic) {
@@ -213,12 +234,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
   const bool masks = args.flag("oracle-masks") || args.flag("score-masks");
   const long long passes = args.integer("passes");
   if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
-  const long long lag = args.integer("box-lag");
-  // 15 frames is 0.5 s at 30 Hz: the oldest a stand-in may be (stale_box_max_age_s) and as long as a keyframe
-  // is held for its late boxes (keyframe_hold_ms).
-  if (lag < 0 || lag > 15) throw bmp::ArgError("--box-lag must be between 0 and 15 frames");
-  if (lag > 0 && !detect)
-    throw bmp::ArgError("--box-lag needs --detector and a dynamic mode other than none");
+  const long long lag = boxLag(args, detect);
   const double drop_p = args.number("drop-bursts");
   if (!(drop_p >= 0.0 && drop_p < 1.0)) throw bmp::ArgError("--drop-bursts must be at least 0 and below 1");
   const long long drop_seed = args.integer("drop-seed");
@@ -240,7 +256,8 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       out.groundtruth.push_back(shifted);
     }
   auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
-      detect ? detectAll(dir, start, maxFrames(args)) : std::vector<std::vector<ObjectBox>>{});
+      detect ? detectAll(args.value("detector-model"), dir, start, maxFrames(args))
+             : std::vector<std::vector<ObjectBox>>{});
   auto stamps = std::make_shared<std::vector<double>>();
   auto current = std::make_shared<FrameProvider>(std::move(first));
   auto pass = std::make_shared<long long>(0);
@@ -373,6 +390,9 @@ void addBenchTrackerOptions(ArgParser& args) {
   args.addFlag("detector",
                "give the tracker the detector's boxes (config/detector.yaml), found for every frame before "
                "tracking starts (untimed): the dynamic stage at work, as in a lockstep run");
+  args.addOption("detector-model", "NAME",
+                 "with --detector: the model instead of detector.yaml's: yolov5n-320, yolov5n-640 (the "
+                 "paper's input size; about 4 times the work), yolo-fastest-xl");
   args.addOption(
       "box-lag", "K",
       "with --detector: each frame's own answer comes K frames late, as in real time on a busy "
