@@ -37,9 +37,9 @@ struct Score {
 
 using BoxesPerFrame = std::vector<std::vector<ObjectBox>>;
 
-// The detector's boxes for every frame.
-BoxesPerFrame detections(const capture::SyntheticScene& scene) {
-  detector::Detector yolo(detector::DetectorConfig{},
+// The detector's boxes for every frame, found by the named model (detector::modelPresets()).
+BoxesPerFrame detections(const capture::SyntheticScene& scene, const std::string& model) {
+  detector::Detector yolo(detector::withModelPreset(detector::DetectorConfig{}, model),
                           Config::fromFile(test::sourceDir() + "/config/dynamic_classes.yaml"));
   BoxesPerFrame all;
   for (int i = 0; i < kFrames; ++i) all.push_back(toObjectBoxes(yolo.detect(scene.render(i).bgr)));
@@ -81,8 +81,9 @@ using Adjust = std::function<void(capture::SyntheticSceneConfig&, TrackerConfig&
 
 // box_keypoint_share 1: the keypoint budget spread as the paper's extractor spreads it, so that the shares
 // of keypoints kept out compare with the paper's (the default budget puts fewer keypoints on people).
+// The detector runs at 320 px, as config/detector.yaml has it, unless detector_model names another.
 Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_share = 1.0, Lag lag = {},
-          const Adjust& adjust = {}) {
+          const Adjust& adjust = {}, const std::string& detector_model = "yolov5n-320") {
   capture::SyntheticSceneConfig sc = test::scenarioConfig(scenario);
   sc.num_frames = kFrames;
   TrackerConfig config;
@@ -92,7 +93,8 @@ Score run(const std::string& scenario, DynamicMode mode, double box_keypoint_sha
   if (!lag.move_stand_ins) config.dynamic.stale_box_motion_iou = 0.0;
   if (adjust) adjust(sc, config);
   const capture::SyntheticScene scene(sc);
-  const BoxesPerFrame boxes = mode == DynamicMode::kNone ? BoxesPerFrame(kFrames) : detections(scene);
+  const BoxesPerFrame boxes =
+      mode == DynamicMode::kNone ? BoxesPerFrame(kFrames) : detections(scene, detector_model);
   Tracker tracker(scene.camera(), config);
   std::vector<double> stamps;
   Score s;
@@ -306,6 +308,24 @@ TEST(DynamicScenario, APersonsKeypointDoesNotTakeTheWallPointBehindIt) {
             ungated.recall(ungated.static_out, ungated.static_on) + 0.005);
   EXPECT_LT(gated.ate, 0.005);
   EXPECT_EQ(gated.lost, 0);
+}
+
+// The paper's variant as printed, with the detector at the paper's input size (YOLOv5 at 640 px; the
+// product runs it at 320, four times less work). The misses left at 320 lie outside every box: people
+// entering the view not found yet, and heads cut off. At 640 the boxes find them, and the bar of
+// 95 % is met. When this was written, seeds 1 / 2 / 3: people 97.3 / 97.9 / 97.8 % kept out (93.0 / 95.8 /
+// 97.8 at 320). Whole boxes also keep the static scene behind a person out: 12.3 / 6.2 / 9.8 % (12.7 /
+// 6.3 / 10.5 at 320), over the 10 % on seed 1, which this test runs; the bound below is that
+// figure's with a little room, so that more static keypoints kept out still shows.
+TEST(DynamicScenario, ThePapersVariantWithThePapersDetectorInputKeepsPeopleOut) {
+  const Adjust as_printed = [](capture::SyntheticSceneConfig&, TrackerConfig& config) {
+    config.dynamic.held_box_s = 0.0;
+  };
+  const Score paper = run("people_walking", DynamicMode::kPaper, 1.0, {}, as_printed, "yolov5n-640");
+  EXPECT_GE(paper.recall(paper.known_out, paper.known_on), 0.95);
+  EXPECT_LE(paper.recall(paper.static_out, paper.static_on), 0.135);
+  EXPECT_LT(paper.ate, 0.005);
+  EXPECT_EQ(paper.lost, 0);
 }
 
 // Real time: each answer 3 frames (0.1 s) late, every frame observed with a stand-in. The default still
