@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "bmp/common/log.hpp"
@@ -33,8 +34,17 @@ void yieldInRealTime(const DetectorSettings& settings) {
 int run(ProcessContext& ctx) {
   const auto mode =
       ctx.args.given("mode") ? std::optional<std::string>(ctx.args.value("mode")) : std::nullopt;
-  const DetectorSettings settings = detectorSettingsFromConfig(ctx.config, mode, configDir());
+  DetectorSettings settings = detectorSettingsFromConfig(ctx.config, mode, configDir());
   finishConfig(ctx);  // unknown keys are refused before the model loads
+  if (ctx.args.given("model")) {
+    try {
+      settings.detector = withModelPreset(settings.detector, ctx.args.value("model"));
+    } catch (const std::invalid_argument& e) {
+      throw ArgError(std::string("--model: ") + e.what());
+    }
+    log::info("--model ", ctx.args.value("model"), ": ", settings.detector.model_path, ", input ",
+              settings.detector.input_size, " px (instead of the configuration's model)");
+  }
   yieldInRealTime(settings);
   DetectorNode node(ctx, settings);
   ctx.status.tick(true);  // the first heartbeat also tells others we are subscribed
@@ -54,6 +64,10 @@ int main(int argc, char** argv) {
        "detector.yaml",
        [](ArgParser& args) {
          args.addOption("mode", "latest|every", "override process.mode of the configuration");
+         args.addOption(
+             "model", "NAME",
+             "a model in the shared folder instead of the configuration's: yolov5n-320, yolov5n-640 "
+             "(the paper's input size; about 3 times the time), yolo-fastest-xl");
        },
        run});
 }

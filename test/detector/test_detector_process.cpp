@@ -80,7 +80,7 @@ rgbd_frame_t frameMessage(int64_t seq, const BonnFrame& frame) {
 // One bmp-detector child on a test-unique LCM port, and what it publishes.
 class DetectorProcess : public ::testing::Test {
  protected:
-  void start(const std::string& mode, int slot) {
+  void start(const std::string& mode, int slot, const std::vector<std::string>& extra = {}) {
     const std::string url = test::uniqueLcmUrl(slot);
     log_path_ = (test::scratchDir("detector_process_" + mode) / "bmp-detector.log").string();
     node_ = std::make_unique<LcmNode>(url);
@@ -93,11 +93,15 @@ class DetectorProcess : public ::testing::Test {
                                        [this](const process_status_t& msg, const ReceivedInfo&) {
                                          if (msg.name == "bmp-detector") statuses_.push_back(msg);
                                        });
-    child_ =
-        std::make_unique<ChildProcess>(std::vector<std::string>{test::binPath("bmp-detector"), "--config",
-                                                                test::sourceDir() + "/config/detector.yaml",
-                                                                "--lcm-url", url, "--mode", mode},
-                                       ChildProcess::Output::kFile, log_path_);
+    std::vector<std::string> command = {test::binPath("bmp-detector"),
+                                        "--config",
+                                        test::sourceDir() + "/config/detector.yaml",
+                                        "--lcm-url",
+                                        url,
+                                        "--mode",
+                                        mode};
+    command.insert(command.end(), extra.begin(), extra.end());
+    child_ = std::make_unique<ChildProcess>(command, ChildProcess::Output::kFile, log_path_);
     // The first heartbeat comes once the model is loaded and the subscription is in place.
     ASSERT_TRUE(pumpUntil([&] { return !statuses_.empty() || !child_->running(); }, 60.0))
         << "no heartbeat; log in " << log_path_;
@@ -258,6 +262,37 @@ TEST_F(DetectorProcess, LatestModeWorksOnTheNewestFrameAndCountsDrops) {
   EXPECT_EQ(last.processed, static_cast<int64_t>(answers_.size()));
   EXPECT_EQ(last.processed + last.dropped, last.received);
   EXPECT_EQ(last.malformed, 0);
+}
+
+// --model swaps the configuration's model for one from the shared folder (a lockstep run that compares with
+// the paper, whose detector sees 640 px): the process says so, and answers with it.
+TEST_F(DetectorProcess, AModelNamedOnTheCommandLineReplacesTheConfiguredOne) {
+  ASSERT_NO_FATAL_FAILURE(start("every", 2, {"--model", "yolov5n-640"}));
+  const auto frames = bonnFrames(445, 1);
+  ASSERT_EQ(frames.size(), 1u);
+  node_->publish("RGBD_FRAME", frameMessage(0, frames[0]));
+  ASSERT_TRUE(pumpUntil([&] { return answers_.count(0) == 1; }, 60.0)) << "no answer; log in " << log_path_;
+  EXPECT_NE(answers_.at(0).model.find("640"), std::string::npos) << answers_.at(0).model;
+  stop();
+  std::ifstream in(log_path_);
+  std::stringstream log;
+  log << in.rdbuf();
+  EXPECT_NE(log.str().find("yolov5n_coco_640.onnx"), std::string::npos) << log.str();
+}
+
+// A name it does not know stops it at start-up, naming the option and the names it knows.
+TEST(DetectorProcessStartUp, AnUnknownModelNameIsAnErrorNamingTheOption) {
+  const auto dir = test::scratchDir("detector_process_unknown_model");
+  const std::string log_path = (dir / "bmp-detector.log").string();
+  ChildProcess child({test::binPath("bmp-detector"), "--config", test::sourceDir() + "/config/detector.yaml",
+                      "--lcm-url", test::uniqueLcmUrl(14), "--model", "yolov9"},
+                     ChildProcess::Output::kFile, log_path);
+  EXPECT_EQ(child.wait(30.0), 2);
+  std::ifstream in(log_path);
+  std::stringstream log;
+  log << in.rdbuf();
+  EXPECT_NE(log.str().find("--model: unknown model 'yolov9'"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("yolov5n-640"), std::string::npos) << log.str();
 }
 
 TEST(DetectorProcessStartUp, MissingModelIsAConfigurationErrorBeforeAnyFrame) {
