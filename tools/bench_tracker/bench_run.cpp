@@ -392,7 +392,7 @@ void addBenchTrackerOptions(ArgParser& args) {
                "tracking starts (untimed): the dynamic stage at work, as in a lockstep run");
   args.addOption("detector-model", "NAME",
                  "with --detector: the model instead of detector.yaml's: yolov5n-320, yolov5n-640 (the "
-                 "paper's input size; about 4 times the work), yolo-fastest-xl");
+                 "paper's input size; about 3 times the time), yolo-fastest-xl");
   args.addOption(
       "box-lag", "K",
       "with --detector: each frame's own answer comes K frames late, as in real time on a busy "
