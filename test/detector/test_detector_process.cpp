@@ -124,12 +124,7 @@ class DetectorProcess : public ::testing::Test {
     return statuses_.empty() ? process_status_t{} : statuses_.back();
   }
 
-  std::string log() const {
-    std::ifstream in(log_path_);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
+  std::string log() const { return test::readText(log_path_); }
 
   std::unique_ptr<LcmNode> node_;
   std::unique_ptr<ChildProcess> child_;
@@ -274,10 +269,7 @@ TEST_F(DetectorProcess, AModelNamedOnTheCommandLineReplacesTheConfiguredOne) {
   ASSERT_TRUE(pumpUntil([&] { return answers_.count(0) == 1; }, 60.0)) << "no answer; log in " << log_path_;
   EXPECT_NE(answers_.at(0).model.find("640"), std::string::npos) << answers_.at(0).model;
   stop();
-  std::ifstream in(log_path_);
-  std::stringstream log;
-  log << in.rdbuf();
-  EXPECT_NE(log.str().find("yolov5n_coco_640.onnx"), std::string::npos) << log.str();
+  EXPECT_NE(log().find("yolov5n_coco_640.onnx"), std::string::npos) << log();
 }
 
 // A name it does not know stops it at start-up, naming the option and the names it knows.
@@ -288,11 +280,9 @@ TEST(DetectorProcessStartUp, AnUnknownModelNameIsAnErrorNamingTheOption) {
                       "--lcm-url", test::uniqueLcmUrl(14), "--model", "yolov9"},
                      ChildProcess::Output::kFile, log_path);
   EXPECT_EQ(child.wait(30.0), 2);
-  std::ifstream in(log_path);
-  std::stringstream log;
-  log << in.rdbuf();
-  EXPECT_NE(log.str().find("--model: unknown model 'yolov9'"), std::string::npos) << log.str();
-  EXPECT_NE(log.str().find("yolov5n-640"), std::string::npos) << log.str();
+  const std::string log = test::readText(log_path);
+  EXPECT_NE(log.find("--model: unknown model 'yolov9'"), std::string::npos) << log;
+  EXPECT_NE(log.find("yolov5n-640"), std::string::npos) << log;
 }
 
 TEST(DetectorProcessStartUp, MissingModelIsAConfigurationErrorBeforeAnyFrame) {
@@ -304,11 +294,9 @@ TEST(DetectorProcessStartUp, MissingModelIsAConfigurationErrorBeforeAnyFrame) {
   ChildProcess child({test::binPath("bmp-detector"), "--config", config, "--lcm-url", test::uniqueLcmUrl(15)},
                      ChildProcess::Output::kFile, log_path);
   EXPECT_EQ(child.wait(30.0), 2);
-  std::ifstream in(log_path);
-  std::stringstream log;
-  log << in.rdbuf();
-  EXPECT_NE(log.str().find((dir / "absent.onnx").string() + ": ONNX model file not found"), std::string::npos)
-      << log.str();
+  const std::string log = test::readText(log_path);
+  EXPECT_NE(log.find((dir / "absent.onnx").string() + ": ONNX model file not found"), std::string::npos)
+      << log;
 }
 
 }  // namespace

@@ -28,13 +28,6 @@ inline std::vector<ReportLine> readReport(const std::string& path) {
   return lines;
 }
 
-inline std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // A command run to its end (or killed after timeout_s): its exit status (-1: timed out) and its output.
 struct Outcome {
   int status = -1;

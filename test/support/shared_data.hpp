@@ -60,6 +60,14 @@ inline std::vector<std::vector<std::string>> readTsvRows(const std::string& path
   return rows;
 }
 
+// A whole text file ("" when it cannot be read), e.g. a process's log.
+inline std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 // The first line of a text file ("" when it cannot be read).
 inline std::string readFirstLine(const std::string& path) {
   std::ifstream in(path);

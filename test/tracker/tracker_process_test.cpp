@@ -7,10 +7,8 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,13 +31,6 @@
 
 namespace bmp {
 namespace {
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 camera_t bonnCamera() {
   camera_t c;
@@ -254,7 +245,7 @@ TEST(TrackerProcess, UnusableFirstCameraIsRefusedWithTheReason) {
   EXPECT_EQ(t.child().stop(20.0), 0);
   // Only the good frames' poses, with the real camera: none of the refused ones started the map.
   EXPECT_EQ(readTumTrajectory(t.trajectory()).size(), 5u);
-  const std::string log = readText(t.logPath());
+  const std::string log = test::readText(t.logPath());
   EXPECT_NE(log.find("fx 542.823"), std::string::npos) << log;
 }
 
