@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 #include <zlib.h>
 #include <opencv2/imgcodecs.hpp>
@@ -92,6 +93,25 @@ ImageProbe probeJpeg(const std::vector<uint8_t>& b) {
   return probe;
 }
 
+// The size an encoded image's header declares, read without decoding (for PNG only the IHDR chunk, so
+// no CRC walk over the whole file): decodeImage compares it with the declared size before OpenCV
+// allocates anything, since a few hundred hostile bytes can claim 20000x20000 pixels.
+std::pair<int, int> headerSize(const EncodedImage& image) {
+  const std::vector<uint8_t>& b = image.data;
+  if (image.encoding == ImageEncoding::kPng) {
+    static constexpr uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (b.size() < 33 || std::memcmp(b.data(), kSignature, 8) != 0 || std::memcmp(&b[12], "IHDR", 4) != 0)
+      throw ImageError("no PNG header");
+    const uint32_t width = readBE32(&b[16]);
+    const uint32_t height = readBE32(&b[20]);
+    const auto side = [](uint32_t v) { return v > 1u << 30 ? -1 : static_cast<int>(v); };
+    return {side(width), side(height)};
+  }
+  if (b.size() < 3 || b[0] != 0xFF || b[1] != 0xD8 || b[2] != 0xFF) throw ImageError("no JPEG header");
+  const ImageProbe probe = probeJpeg(b);  // walks the header segments only
+  return {probe.width, probe.height};
+}
+
 }  // namespace
 
 ImageProbe probeEncodedImage(const std::vector<uint8_t>& bytes) {
@@ -164,12 +184,27 @@ cv::Mat decodeImage(const EncodedImage& image) {
     mat = cv::Mat(image.height, image.width, type, const_cast<uint8_t*>(image.data.data())).clone();
   } else if (image.encoding == ImageEncoding::kPng || image.encoding == ImageEncoding::kJpeg) {
     if (image.data.empty()) throw ImageError("empty encoded image");
+    std::pair<int, int> size;
+    try {
+      size = headerSize(image);
+    } catch (const ImageError& e) {
+      throw ImageError(std::string("undecodable ") + toString(image.encoding) + " data: " + e.what());
+    }
+    const auto [width, height] = size;
+    if (width != image.width || height != image.height)
+      throw ImageError(std::string(toString(image.encoding)) + " header says " + std::to_string(width) + "x" +
+                       std::to_string(height) + ", declared " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " (not decoded)");
     const int flags = image.pixel_format == PixelFormat::kBgr8    ? cv::IMREAD_COLOR
                       : image.pixel_format == PixelFormat::kMono8 ? cv::IMREAD_GRAYSCALE
                                                                   : cv::IMREAD_UNCHANGED;
-    mat = cv::imdecode(
-        cv::Mat(1, static_cast<int>(image.data.size()), CV_8UC1, const_cast<uint8_t*>(image.data.data())),
-        flags);
+    try {
+      mat = cv::imdecode(
+          cv::Mat(1, static_cast<int>(image.data.size()), CV_8UC1, const_cast<uint8_t*>(image.data.data())),
+          flags);
+    } catch (const cv::Exception& e) {  // OpenCV throws on some corrupt headers instead of failing
+      throw ImageError(std::string("undecodable ") + toString(image.encoding) + " data: " + e.what());
+    }
     if (mat.empty()) throw ImageError(std::string("undecodable ") + toString(image.encoding) + " data");
     if (mat.type() != type)
       throw ImageError(std::string("decoded ") + toString(image.encoding) + " has pixel type " +

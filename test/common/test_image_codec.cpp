@@ -3,10 +3,14 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bmp/common/image_codec.hpp"
+#include "forged_image.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
 namespace {
+
+using test::setJpegSize;
+using test::setPngSize;
 
 const std::string kDepth = "data/rgbd_bonn_crowd/depth/1548339829.89888.png";
 const std::string kColour = "data/rgbd_bonn_crowd/rgb/1548339829.89644.jpg";
@@ -65,6 +69,48 @@ TEST(ImageCodec, RawAndPngRoundTrip) {
   EXPECT_THROW(decodeImage(bad), ImageError);
   EncodedImage garbage{64, 48, ImageEncoding::kPng, PixelFormat::kMono16, {1, 2, 3, 4}};
   EXPECT_THROW(decodeImage(garbage), ImageError);
+}
+
+// A hostile publisher's few hundred bytes whose header claims a huge image: refused from the header,
+// before OpenCV allocates (a 20000x20000 JPEG took 1.2 GB and 5.5 s to decode only to be refused).
+TEST(ImageCodec, AHeaderClaimingAHugeImageIsRefusedBeforeDecoding) {
+  EncodedImage depth{640, 480, ImageEncoding::kPng, PixelFormat::kMono16,
+                     readFileBytes(test::sharedPath(kDepth))};
+  setPngSize(depth.data, 20000, 20000);
+  try {
+    decodeImage(depth);
+    FAIL() << "a PNG whose header disagrees with the declared size was decoded";
+  } catch (const ImageError& e) {
+    EXPECT_NE(std::string(e.what()).find("header says 20000x20000, declared 640x480 (not decoded)"),
+              std::string::npos)
+        << e.what();
+  }
+  EncodedImage colour{640, 480, ImageEncoding::kJpeg, PixelFormat::kBgr8,
+                      readFileBytes(test::sharedPath(kColour))};
+  setJpegSize(colour.data, 20000, 20000);
+  try {
+    decodeImage(colour);
+    FAIL() << "a JPEG whose header disagrees with the declared size was decoded";
+  } catch (const ImageError& e) {
+    EXPECT_NE(std::string(e.what()).find("jpeg header says 20000x20000"), std::string::npos) << e.what();
+  }
+  // Data of one format declared as the other is refused too.
+  colour.encoding = ImageEncoding::kPng;
+  EXPECT_THROW(decodeImage(colour), ImageError);
+}
+
+// OpenCV throws its own exception for some headers (here: over its pixel limit) instead of failing; the
+// caller still gets an ImageError, so a process that skips bad frames skips this one too.
+TEST(ImageCodec, OpenCvsOwnRefusalIsAnImageError) {
+  EncodedImage depth{70000, 70000, ImageEncoding::kPng, PixelFormat::kMono16,
+                     readFileBytes(test::sharedPath(kDepth))};
+  setPngSize(depth.data, 70000, 70000);
+  try {
+    decodeImage(depth);
+    FAIL() << "a PNG over OpenCV's pixel limit was decoded";
+  } catch (const ImageError& e) {
+    EXPECT_NE(std::string(e.what()).find("undecodable png data: OpenCV"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/tum_sequence.hpp"
 #include "file_image.hpp"
+#include "forged_image.hpp"
 #include "lcm_url.hpp"
 #include "shared_data.hpp"
 
@@ -106,11 +107,14 @@ class TrackerUnderTest {
     return pumpUntil([&] { return poses.size() > before; }, 20.0);
   }
 
+  // How another publisher might damage a frame's depth image.
+  enum class Damage { kNone, kNotPng, kHugeHeader };
   // Publishes Bonn frame i and waits for its pose.
-  // damage: replaces the depth with bytes that are no PNG, as another publisher might send.
-  bool playAndWait(int i, bool damage = false) {
+  bool playAndWait(int i, Damage damage = Damage::kNone) {
     rgbd_frame_t msg = frame(i);
-    if (damage) msg.depth.data.assign(msg.depth.data.size(), 0x5a);
+    if (damage == Damage::kNotPng) msg.depth.data.assign(msg.depth.data.size(), 0x5a);
+    // A well-formed PNG whose header claims 70000x70000: OpenCV threw on it, which once ended the tracker.
+    if (damage == Damage::kHugeHeader) test::setPngSize(msg.depth.data, 70000, 70000);
     return publishAndWait(msg);
   }
 
@@ -131,15 +135,23 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
   ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
   const int n = 40;
   const int damaged = 20;  // undecodable depth: answered as skipped, tracking goes on
-  for (int i = 0; i < n; ++i) ASSERT_TRUE(t.playAndWait(i, i == damaged)) << "no pose for " << i;
+  const int bomb = 30;     // a depth header claiming a huge image: the same
+  using Damage = TrackerUnderTest::Damage;
+  for (int i = 0; i < n; ++i) {
+    const Damage damage = i == damaged ? Damage::kNotPng : i == bomb ? Damage::kHugeHeader : Damage::kNone;
+    ASSERT_TRUE(t.playAndWait(i, damage)) << "no pose for " << i << "; log " << t.logPath();
+  }
   const std::vector<slam_pose_t>& poses = t.poses;
   const std::vector<keyframe_t>& kfs = t.keyframes;
   ASSERT_EQ(poses.size(), static_cast<std::size_t>(n));
   EXPECT_EQ(poses[damaged].seq, damaged);
   EXPECT_EQ(static_cast<int>(poses[damaged].state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  EXPECT_EQ(static_cast<int>(poses[bomb].state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  EXPECT_NE(test::readText(t.logPath()).find("png header says 70000x70000, declared 640x480 (not decoded)"),
+            std::string::npos);
   for (int i = 0; i < n; ++i) {
     EXPECT_EQ(poses[i].seq, i);
-    if (i == damaged) continue;
+    if (i == damaged || i == bomb) continue;
     EXPECT_EQ(static_cast<int>(poses[i].state), static_cast<int>(slam_pose_t::STATE_OK)) << "frame " << i;
     EXPECT_EQ(poses[i].num_keypoints, 1000);
     EXPECT_GT(poses[i].processing_ms, 0.0f);
@@ -163,7 +175,7 @@ TEST(TrackerProcess, PosePerFrameKeyframesAndTrajectoryOnSigint) {
 
   EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
   const Trajectory written = readTumTrajectory(t.trajectory());
-  EXPECT_EQ(written.size(), static_cast<std::size_t>(n - 1));  // every frame but the skipped one
+  EXPECT_EQ(written.size(), static_cast<std::size_t>(n - 2));  // every frame but the skipped ones
   EXPECT_GE(readTumTrajectory(t.keyframeTrajectory()).size(), 1u);
   // The clean exit replaced the live file with the optimised trajectory.
   EXPECT_EQ(test::readFirstLine(t.trajectory()), "# timestamp tx ty tz qx qy qz qw");
