@@ -154,6 +154,25 @@ TEST(FrameStream, AForgedFrameCannotPoisonTheStream) {
   EXPECT_EQ(s.lostBefore(), 0);
 }
 
+// Negative or huge counters are refused outright: their differences would overflow (INT64_MIN first, then
+// any real seq), and the lost-frame count would go negative.
+TEST(FrameStream, SeqAndStampOutOfRangeAreRefusedAndCountNothing) {
+  auto negative = frame(0);
+  negative.seq = std::numeric_limits<int64_t>::min();
+  EXPECT_NE(checkFrame(negative).find("seq -9223372036854775808 is out of range"), std::string::npos);
+  auto stamp = frame(0);
+  stamp.utime = -1;
+  EXPECT_NE(checkFrame(stamp).find("stamp -1 us is out of range"), std::string::npos);
+  FrameStream s;
+  EXPECT_FALSE(s.accept(negative).ok);
+  auto huge = frame(0);
+  huge.seq = kMaxFrameCounter + 1;
+  EXPECT_FALSE(s.accept(huge).ok);
+  for (int64_t seq = 0; seq < 10; ++seq) EXPECT_TRUE(s.accept(frame(seq)).ok) << seq;
+  EXPECT_EQ(s.lostBefore(), 0);
+  EXPECT_EQ(s.refused(), 2);
+}
+
 // A restarted capture plays from seq 0 again: followed after a few frames in order, not refused forever.
 TEST(FrameStream, ARestartedCaptureIsFollowedAfterAFewFrames) {
   FrameStreamLimits limits;

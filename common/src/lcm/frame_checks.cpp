@@ -70,6 +70,9 @@ std::string describe(const rgbd_frame_t& f) {
 }  // namespace
 
 std::string checkFrame(const rgbd_frame_t& msg) {
+  if (msg.seq < 0 || msg.seq > kMaxFrameCounter) return "seq " + std::to_string(msg.seq) + " is out of range";
+  if (msg.utime < 0 || msg.utime > kMaxFrameCounter)
+    return "stamp " + std::to_string(msg.utime) + " us is out of range";
   if (std::string why = checkCamera(msg.camera); !why.empty()) return why;
   if (!std::isfinite(msg.depth_scale) || msg.depth_scale <= 0) return "depth_scale must be positive";
   if (std::string why = checkImage(msg.color, msg.camera, image_t::PIXEL_BGR8, "colour"); !why.empty())
@@ -102,6 +105,7 @@ FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note
 }
 
 int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
+  if (msg.seq < 0 || msg.seq > kMaxFrameCounter) return 0;  // refused by checkFrame; not a position
   if (!seen_seq_) {
     seen_seq_ = msg.seq;  // frames published before we listened are not ours to count
     return 0;

@@ -14,7 +14,12 @@ namespace bmp {
 // The largest image side we accept: larger is another publisher's mistake, not a camera we support.
 inline constexpr int kMaxImageSide = 8192;
 
-// Why the frame cannot be used on its own (intrinsics, sizes, encodings, depth scale), or "".
+// seq and utime beyond this (2^62: 146 000 years of microseconds) are another publisher's, and keeping
+// them out keeps every difference of two of them free of overflow.
+inline constexpr int64_t kMaxFrameCounter = int64_t{1} << 62;
+
+// Why the frame cannot be used on its own (seq or stamp negative or beyond kMaxFrameCounter, intrinsics,
+// sizes, encodings, depth scale), or "".
 std::string checkFrame(const rgbd_frame_t& msg);
 
 // Bounds of a plausible frame stream. A frame beyond them is refused rather than trusted, so one forged
@@ -50,6 +55,8 @@ class FrameStream {
   int64_t lostBefore() const { return lost_before_; }
   int64_t resyncs() const { return resyncs_; }
   int64_t repeats() const { return repeats_; }
+  // The stream's camera (its first accepted frame's), or nullptr before any.
+  const camera_t* camera() const { return first_ ? &first_->camera : nullptr; }
 
  private:
   struct Position {
