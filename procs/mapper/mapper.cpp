@@ -38,6 +38,7 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   Stopwatch watch;
   IntegrateResult result;
   result.reason = checkKeyframe(kf);
+  if (result.reason.empty()) result.reason = checkPlace(kf.T_world_cam);
   if (result.reason.empty() && hasKeyframe(kf.id))
     result.reason = "a keyframe with this id was already mapped";
   if (!result.reason.empty()) return result;
@@ -71,11 +72,13 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
   for (const auto& u : updates) {
     const auto it = keyframes_.find(u.id);
     // A merged revisit keeps nothing of its own to move: its points follow the keyframe it was merged into.
-    if (it == keyframes_.end() && merged_.count(u.id) != 0 && checkPose(u.T_world_cam).empty()) {
+    const std::string pose_problem = checkPose(u.T_world_cam);
+    const std::string problem = pose_problem.empty() ? checkPlace(u.T_world_cam) : pose_problem;
+    if (it == keyframes_.end() && merged_.count(u.id) != 0 && problem.empty()) {
       ++result.applied;
       continue;
     }
-    std::string why = it == keyframes_.end() ? "unknown keyframe" : checkPose(u.T_world_cam);
+    const std::string why = it == keyframes_.end() ? "unknown keyframe" : problem;
     if (!why.empty()) {
       result.rejected.push_back("keyframe " + std::to_string(u.id) + ": " + why);
       continue;
@@ -86,6 +89,14 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
     ++result.applied;
   }
   return result;
+}
+
+std::string Mapper::checkPlace(const SE3& T_world_cam) const {
+  const double distance = T_world_cam.translation().norm();
+  if (distance <= settings_.world_radius_m) return "";
+  return "pose " + std::to_string(static_cast<int64_t>(distance)) +
+         " m from the world origin, beyond world_radius_m " +
+         std::to_string(static_cast<int64_t>(settings_.world_radius_m));
 }
 
 bool Mapper::movedBeyondThresholds(const Stored& kf) const {

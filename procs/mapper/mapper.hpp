@@ -94,6 +94,8 @@ class Mapper {
   void rebuildOctree();
   const PointList& stitched();
   bool movedBeyondThresholds(const Stored& kf) const;
+  // Why a finite pose is outside the mapped world (settings_.world_radius_m), or "".
+  std::string checkPlace(const SE3& T_world_cam) const;
   // Folds a revisit's clouds into a stored keyframe's (its camera frame), voxel-filtered again.
   void mergeInto(Stored& into, const Stored& revisit) const;
   // The id of a stored keyframe whose pose is within the merge thresholds of T, or -1.

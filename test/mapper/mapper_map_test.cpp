@@ -214,5 +214,26 @@ TEST(PoseUpdate, UnknownIdsAndBadPosesAreRefusedOneByOne) {
   EXPECT_EQ(r.rejected[1], "keyframe 3: non-finite pose");
 }
 
+// A forged pose 1.6 km away would make the grid span it (64000^2 cells): refused, as a keyframe and as an
+// update, and the grid keeps its size.
+TEST(WorldRadius, KeyframesAndUpdatesBeyondItAreRefused) {
+  MapperSettings settings = test::testSettings();
+  settings.world_radius_m = 50.0;
+  Mapper mapper(settings);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(1, SE3::Identity(), kWall)).ok);
+  const std::size_t cells = mapper.grid().cells.size();
+  const IntegrateResult far = mapper.integrate(wallKeyframe(2, translation(1600.0, 0, 1600.0), kWall));
+  EXPECT_FALSE(far.ok);
+  EXPECT_EQ(far.reason, "pose 2262 m from the world origin, beyond world_radius_m 50");
+  EXPECT_TRUE(mapper.integrate(wallKeyframe(3, translation(30.0, 0, 0), kWall)).ok);
+  const PoseUpdateResult r = mapper.updatePoses({{1, translation(0, 0, 60.0)}, {3, translation(31.0, 0, 0)}});
+  EXPECT_EQ(r.applied, 1);
+  ASSERT_EQ(r.rejected.size(), 1u);
+  EXPECT_EQ(r.rejected[0], "keyframe 1: pose 60 m from the world origin, beyond world_radius_m 50");
+  EXPECT_EQ(mapper.keyframeCount(), 2u);
+  EXPECT_GT(mapper.grid().cells.size(), cells);  // the one 30 m away widened it, within bounds
+  EXPECT_LT(mapper.grid().cells.size(), 2000u * 2000u);
+}
+
 }  // namespace
 }  // namespace bmp::mapper

@@ -26,15 +26,18 @@ void MapperNode::run() {
   while (!ctx_.stop.requested()) {
     ctx_.lcm.handle(100);
     const double now = clock_.elapsedMs() * 1e-3;
-    if (mapper_.maintain(now)) {
-      log::info("octree rebuilt from ", mapper_.keyframeCount(), " keyframes after a pose update");
-      grid_dirty_ = true;
-    }
-    publishDue(now);
-    if (save_signal_.pending()) save("SIGUSR1");
-    if (save_dirty_ && process_.save_period_s > 0 && now - last_save_s_ >= process_.save_period_s) {
-      last_save_s_ = now;
-      save("periodic");
+    try {
+      maintainAndPublish(now);
+    } catch (const std::exception& e) {
+      // Whatever a message led to (a grid too large to allocate or to send): reported, and the mapper goes
+      // on mapping; what it holds is saved at exit all the same.
+      const std::string what = std::string("map upkeep failed: ") + e.what();
+      if (what != last_warning_) {  // counted and logged once, not every turn of the loop
+        log::error(what);
+        ctx_.status.malformed();
+      }
+      last_warning_ = what;
+      status_dirty_ = true;
     }
     // Reads /proc: after each message, or once per heartbeat, is enough.
     if (status_dirty_ || now - last_status_s_ >= 1.0) {
@@ -46,6 +49,19 @@ void MapperNode::run() {
   }
   log::info("mapped ", mapper_.keyframeCount(), " keyframes (+", mapper_.mergedCount(),
             " revisits merged); integration ", mapper_.integrationTimes().summary());
+}
+
+void MapperNode::maintainAndPublish(double now) {
+  if (mapper_.maintain(now)) {
+    log::info("octree rebuilt from ", mapper_.keyframeCount(), " keyframes after a pose update");
+    grid_dirty_ = true;
+  }
+  publishDue(now);
+  if (save_signal_.pending()) save("SIGUSR1");
+  if (save_dirty_ && process_.save_period_s > 0 && now - last_save_s_ >= process_.save_period_s) {
+    last_save_s_ = now;
+    save("periodic");
+  }
 }
 
 void MapperNode::refuse(const std::string& what) {

@@ -29,6 +29,8 @@ class MapperNode {
   void onKeyframe(const keyframe_t& msg);
   void onPoses(const keyframe_poses_t& msg);
   void publishDue(double now_s);
+  // The loop's work besides messages: octree upkeep, publishing, saving.
+  void maintainAndPublish(double now_s);
   void reportFloor();  // logs when the floor is first fitted
   void refuse(const std::string& what);
   std::string statusLine() const;
