@@ -1,11 +1,41 @@
 #include "tracker/detection_book.hpp"
 
+#include <cstdint>
+#include <iterator>
+
 namespace bmp::tracker {
 
-void DetectionBook::add(int64_t seq, FrameBoxes boxes) {
+namespace {
+
+template <typename Map>
+void eraseOtherStamps(Map& by_key, int64_t seq, int64_t utime) {
+  for (auto it = by_key.lower_bound({seq, INT64_MIN}); it != by_key.end() && it->first.first == seq;)
+    it = it->first.second == utime ? std::next(it) : by_key.erase(it);
+}
+
+}  // namespace
+
+void DetectionBook::frameHeard(int64_t seq, int64_t utime) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  heard_[seq] = utime;
+  while (heard_.size() > capacity_) heard_.erase(heard_.begin());
+  eraseOtherStamps(by_frame_, seq, utime);
+  eraseOtherStamps(recent_, seq, utime);
+}
+
+std::string DetectionBook::add(int64_t seq, FrameBoxes boxes) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     const int64_t utime = boxes.utime;
+    if (const auto h = heard_.find(seq); h != heard_.end() && h->second != utime)
+      return "answer for frame " + std::to_string(seq) + " has stamp " + std::to_string(utime) +
+             " us, the frame's is " + std::to_string(h->second);
+    const auto first = by_frame_.lower_bound({seq, INT64_MIN});
+    std::size_t waiting = 0;
+    for (auto it = first; it != by_frame_.end() && it->first.first == seq; ++it) ++waiting;
+    if (waiting >= kMaxPerSeq && by_frame_.count({seq, utime}) == 0)
+      return "frame " + std::to_string(seq) + " already has " + std::to_string(waiting) +
+             " answers waiting with other stamps";
     if (boxes.usable) {
       recent_[{seq, utime}] = boxes;
       while (recent_.size() > kRecent) recent_.erase(recent_.begin());
@@ -17,6 +47,7 @@ void DetectionBook::add(int64_t seq, FrameBoxes boxes) {
     }
   }
   arrived_.notify_all();
+  return "";
 }
 
 std::optional<FrameBoxes> DetectionBook::take(int64_t seq, int64_t utime, std::chrono::milliseconds wait) {

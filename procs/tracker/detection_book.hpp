@@ -8,14 +8,17 @@
 //     on the probabilities carried by its matches; an answer that comes later is handed over as late
 //     (applied to the keyframe the frame made, if it made one).
 // Answers are kept by (seq, stamp): one that names a frame's seq with another stamp (a forged or stale
-// answer) is kept apart and never displaces or hides the real one. Bounded: only the `capacity` answers
-// with the highest seq are kept.
+// answer) is kept apart and never displaces or hides the real one. Once the frame itself is heard
+// (frameHeard), answers naming its seq with another stamp are refused and dropped, and a seq not heard yet
+// holds at most kMaxPerSeq answers, so a flood of forgeries cannot push the real answers out. Bounded: only
+// the `capacity` answers with the highest seq are kept.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -33,7 +36,12 @@ class DetectionBook {
  public:
   explicit DetectionBook(std::size_t capacity = 256) : capacity_(capacity) {}
 
-  void add(int64_t seq, FrameBoxes boxes);
+  // Keeps the answer; or says why not (its frame was heard with another stamp, or its seq already holds
+  // kMaxPerSeq answers) and keeps nothing.
+  std::string add(int64_t seq, FrameBoxes boxes);
+  // The frame (seq, utime) was received: other stamps for its seq are forgeries from here on.
+  void frameHeard(int64_t seq, int64_t utime);
+  static constexpr std::size_t kMaxPerSeq = 2;
   // The answer for (seq, utime), waiting up to `wait` for it; nullopt when none came. Taken answers are
   // removed.
   std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
@@ -52,6 +60,7 @@ class DetectionBook {
   std::condition_variable arrived_;
   std::map<std::pair<int64_t, int64_t>, FrameBoxes> by_frame_;  // (seq, utime)
   std::map<std::pair<int64_t, int64_t>, FrameBoxes> recent_;    // the newest usable answers, taken or not
+  std::map<int64_t, int64_t> heard_;                            // seq -> stamp of the newest frames heard
   int64_t discarded_ = 0;
 };
 

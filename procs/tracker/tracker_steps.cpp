@@ -154,6 +154,17 @@ bool Tracker::applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes) {
   return false;
 }
 
+bool Tracker::applyLateBoxesToKeyFrame(int64_t id, const std::vector<ObjectBox>& boxes) {
+  if (!dynamic_.enabled()) return false;
+  const auto lock = map_.lockForTracking();
+  for (const auto& kf : map_.keyFrames())
+    if (kf->id == id) {
+      dynamic_.observeLate(*kf, boxes);
+      return true;
+    }
+  return false;
+}
+
 cv::Mat Tracker::keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, const cv::Mat& depth) {
   const auto lock = map_.lockForTracking();
   for (const auto& kf : map_.keyFrames())

@@ -94,5 +94,36 @@ TEST(DetectionBook, TakeWaitsForAnAnswerThatArrives) {
   EXPECT_EQ(got->boxes.size(), 1u);
 }
 
+// Once a frame is heard, answers naming its seq with another stamp are forgeries: refused, and any waiting
+// are dropped, so they can neither stand in for later frames nor fill the book.
+TEST(DetectionBook, OnceTheFrameIsHeardOtherStampsAreRefused) {
+  DetectionBook book;
+  EXPECT_EQ(book.add(12, answer(1, 5)), "");  // before the frame: kept apart, as any answer
+  book.frameHeard(12, 12000);
+  EXPECT_EQ(book.size(), 0u) << "the forgery waiting for frame 12 is dropped";
+  EXPECT_TRUE(book.newestBefore(13, 0, 4).empty()) << "and is no stand-in";
+  EXPECT_EQ(book.add(12, answer(2, 5)), "answer for frame 12 has stamp 2 us, the frame's is 12000");
+  EXPECT_EQ(book.add(12, answer(12000, 3)), "");
+  const auto got = book.take(12, 12000, kNoWait);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->boxes.size(), 3u);
+}
+
+// A flood of forged answers for frames not heard yet (varying stamps) holds at most kMaxPerSeq per seq, so
+// it cannot push out the real answers waiting in the book.
+TEST(DetectionBook, AFloodForOneFutureFrameIsBounded) {
+  DetectionBook book(8);
+  book.frameHeard(5, 5000);
+  ASSERT_EQ(book.add(5, answer(5000, 1)), "");
+  for (int64_t stamp = 0; stamp < 1000; ++stamp) book.add(6, answer(stamp, 0));
+  EXPECT_EQ(book.size(), 1 + DetectionBook::kMaxPerSeq);
+  EXPECT_EQ(book.discarded(), 0);
+  EXPECT_TRUE(book.take(5, 5000, kNoWait)) << "the real answer is still there";
+  EXPECT_NE(book.add(6, answer(6000, 1)), "") << "the seq is full until its frame is heard";
+  book.frameHeard(6, 6000);
+  EXPECT_EQ(book.add(6, answer(6000, 1)), "");
+  EXPECT_TRUE(book.take(6, 6000, kNoWait));
+}
+
 }  // namespace
 }  // namespace bmp::tracker

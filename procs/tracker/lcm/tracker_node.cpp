@@ -62,6 +62,7 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
   lost_before_ += verdict.lost_before;
   if (!verdict.ok) return refuse(msg, verdict);
   newest_frame_seq_ = std::max(newest_frame_seq_, msg.seq);
+  book_.frameHeard(msg.seq, msg.utime);
   queue_.push({msg, verdict});
 }
 
@@ -85,9 +86,17 @@ void TrackerNode::onDetections(const detections_t& msg) {
   // Checked as the contract says (levels, classes, boxes inside the image); a bad one throws and is
   // counted as malformed by the LCM node.
   const detector::FrameDetections d = detector::fromDetectionsMessage(msg);
+  // Boxes in another image's pixels would cut the wrong regions.
+  if (const camera_t* camera = stream_.camera();
+      camera != nullptr && (d.width != camera->width || d.height != camera->height))
+    throw std::runtime_error("answer for frame " + std::to_string(d.seq) + " is for a " +
+                             std::to_string(d.width) + "x" + std::to_string(d.height) +
+                             " image, the camera's is " + std::to_string(camera->width) + "x" +
+                             std::to_string(camera->height));
   // The book keeps the answers with the highest seq: ones far ahead of every frame heard (forged, or from
-  // another run) would push out the real ones waiting for their frames.
-  if (d.seq > newest_frame_seq_ + static_cast<int64_t>(book_.capacity()))
+  // another run) would push out the real ones waiting for their frames. An answer comes after its frame
+  // unless that frame was lost on its way here; kAnswersAhead allows for a second of such frames.
+  if (d.seq > newest_frame_seq_ + kAnswersAhead)
     throw std::runtime_error("answer for frame " + std::to_string(d.seq) +
                              ", far ahead of the newest frame " + std::to_string(newest_frame_seq_));
   FrameBoxes boxes;
@@ -95,7 +104,7 @@ void TrackerNode::onDetections(const detections_t& msg) {
   boxes.usable = d.skipped.empty();
   boxes.boxes = toObjectBoxes(d.detections);
   ++detections_heard_;
-  book_.add(d.seq, std::move(boxes));
+  if (std::string why = book_.add(d.seq, std::move(boxes)); !why.empty()) throw std::runtime_error(why);
 }
 
 TrackerNode::FrameBoxChoice TrackerNode::boxesFor(const rgbd_frame_t& msg) {
@@ -126,7 +135,7 @@ void TrackerNode::releaseHeldKeyframes(bool all) {
     std::optional<FrameBoxes> late = book_.take(h.frame.seq, h.frame.utime, std::chrono::milliseconds(0));
     if (!late && !all && h.held.elapsedMs() < policy_.keyframe_hold_ms) break;  // in order: the rest wait too
     if (late && late->usable) {
-      late_applied_ += tracker_->applyLateBoxes(h.frame.seq, late->boxes);
+      late_applied_ += tracker_->applyLateBoxesToKeyFrame(h.keyframe.id, late->boxes);
       const cv::Mat mask = tracker_->keyframeMask(h.keyframe.id, &late->boxes, h.depth);
       if (!mask.empty()) h.mask = mask;
     }
@@ -220,7 +229,7 @@ void TrackerNode::process(const Queued& frame) {
     depth = decodeImage(fromMsg(msg.depth));
     if (depth.type() != CV_16UC1 || depth.size() != color.size())
       throw ImageError("depth is not 16-bit at colour size");
-  } catch (const ImageError& e) {
+  } catch (const std::exception& e) {  // ImageError, or the allocation of a decoded image
     return skip(msg, "frame seq " + std::to_string(msg.seq) + ": " + e.what());
   }
   if (!tracker_) {

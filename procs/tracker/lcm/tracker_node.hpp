@@ -103,6 +103,7 @@ class TrackerNode {
   DetectionBook book_;
   LastAnswer<slam_pose_t> last_pose_;  // published again for a repeated frame
   int64_t newest_frame_seq_ = 0;       // receive thread only: answers far beyond it name no frame of ours
+  static constexpr int64_t kAnswersAhead = 30;  // how far beyond it an answer may name a frame (lost here)
   std::atomic<int64_t> detections_heard_{0};
   bool warned_no_detections_ = false;
   struct HeldKeyframe {
