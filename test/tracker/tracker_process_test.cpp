@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include <bmp/detections_t.hpp>
 #include <bmp/keyframe_t.hpp>
 #include <bmp/process_status_t.hpp>
 #include <bmp/rgbd_frame_t.hpp>
@@ -98,6 +99,11 @@ class TrackerUnderTest {
     msg.color = test::fileImage(pair.rgb_path, PixelFormat::kBgr8);
     msg.depth = test::fileImage(pair.depth_path, PixelFormat::kMono16);
     return msg;
+  }
+
+  template <typename Message>
+  void publish(const std::string& channel, const Message& msg) {
+    node_.publish(channel, msg);
   }
 
   // Publishes msg and waits for one more pose, as bmp-capture's lockstep does.
@@ -288,6 +294,35 @@ TEST(TrackerProcess, CameraChangeAndStampsOutOfOrderAreRefused) {
   const Trajectory written = readTumTrajectory(t.trajectory());
   ASSERT_EQ(written.size(), 15u);  // in time order, none of the refused frames
   for (std::size_t i = 1; i < written.size(); ++i) EXPECT_GT(written[i].stamp, written[i - 1].stamp);
+}
+
+// Answers from another publisher: one for an image of another size, one naming a frame already heard with
+// another stamp. Each is refused with the reason (counted as malformed), and tracking goes on.
+TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
+  TrackerUnderTest t("tracker_forged_answers", 4);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  detections_t wrong_size{};
+  wrong_size.seq = 4;
+  wrong_size.utime = t.frame(4).utime;
+  wrong_size.model = "forged";
+  wrong_size.image_width = 320;
+  wrong_size.image_height = 240;
+  detections_t wrong_stamp = wrong_size;
+  wrong_stamp.utime += 1;
+  wrong_stamp.image_width = 640;
+  wrong_stamp.image_height = 480;
+  t.publish("DETECTIONS", wrong_size);
+  t.publish("DETECTIONS", wrong_stamp);
+  for (int i = 5; i < 8; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK));
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("answer for frame 4 is for a 320x240 image, the camera's is 640x480"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("answer for frame 4 has stamp " + std::to_string(wrong_stamp.utime) + " us"),
+            std::string::npos)
+      << log;
 }
 
 }  // namespace
