@@ -75,6 +75,36 @@ TEST(RunMonitor, CountsStatesAndTimesWhatWasProcessed) {
   EXPECT_NE(json.find("\"position_std_mm\": {\"count\": 4"), std::string::npos) << json;
 }
 
+// Another publisher's NaN, infinite or negative times count as answers but stay out of the medians.
+TEST(RunMonitor, ImplausibleTimesAreLeftOutOfTheMedians) {
+  const std::string url = test::uniqueLcmUrl(3);
+  RunMonitor monitor(url, "SLAM_POSE", "DETECTIONS");
+  LcmNode publisher(url);
+  const float times[] = {10.0f, std::nanf(""), -1.0f, INFINITY};
+  for (int seq = 0; seq < 4; ++seq) {
+    slam_pose_t pose{};
+    pose.seq = seq;
+    pose.state = slam_pose_t::STATE_OK;
+    pose.processing_ms = times[seq];
+    publisher.publish("SLAM_POSE", pose);
+    detections_t det{};
+    det.seq = seq;
+    det.inference_ms = times[3 - seq];  // 10 ms last
+    publisher.publish("DETECTIONS", det);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  RunSummary s;
+  for (int i = 0; i < 100 && (s = monitor.summary()).detections < 4; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(s.poses, 4);
+  EXPECT_EQ(s.ok, 4);
+  EXPECT_EQ(s.detections, 4);
+  ASSERT_EQ(s.tracking_ms.count(), 1u);
+  EXPECT_DOUBLE_EQ(s.tracking_ms.median(), 10.0);
+  ASSERT_EQ(s.detector_ms.count(), 1u);
+  EXPECT_DOUBLE_EQ(s.detector_ms.median(), 10.0);
+}
+
 // Each process's last heartbeat, by name and instance: how many frames it received, processed, dropped, lost
 // and refused, in the text and the JSON; the mapper's own figures from its message; degraded poses counted.
 TEST(RunMonitor, KeepsEachProcessLastHeartbeat) {

@@ -111,6 +111,16 @@ std::string formatSummaryJson(const RunSummary& s) {
   return out.str();
 }
 
+namespace {
+
+// Anyone can publish poses and answers: a NaN, infinite or negative time would spoil the medians (and
+// std::sort on NaN is undefined), so such a time is left out of them; the message still counts.
+bool plausibleMs(float ms) {
+  return std::isfinite(ms) && ms >= 0.0f;
+}
+
+}  // namespace
+
 void RunMonitor::onPose(const slam_pose_t& m) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!last_pose_.isNew(m.seq, m.utime)) return;  // the answer to a frame capture resent, again
@@ -138,7 +148,7 @@ void RunMonitor::onPose(const slam_pose_t& m) {
       ++s.skipped;
       break;
   }
-  if (state != slam_pose_t::STATE_SKIPPED) s.tracking_ms.add(processing_ms);
+  if (state != slam_pose_t::STATE_SKIPPED && plausibleMs(processing_ms)) s.tracking_ms.add(processing_ms);
   const float position_std_m = m.position_std_m;
   if (std::isfinite(position_std_m) && position_std_m >= 0.0f) s.position_std_mm.add(position_std_m * 1000.0);
   if (s.poses > 1) s.frame_period_ms.add(since_last_pose_.elapsedMs());
@@ -157,7 +167,7 @@ RunMonitor::RunMonitor(const std::string& url, const std::string& pose_channel,
       ++summary_.detections_skipped;
       return;
     }
-    summary_.detector_ms.add(m.inference_ms);
+    if (plausibleMs(m.inference_ms)) summary_.detector_ms.add(m.inference_ms);
   });
   lcm_.subscribe<process_status_t>(status_channel, [this](const process_status_t& m, const ReceivedInfo&) {
     std::lock_guard<std::mutex> lock(mutex_);
