@@ -89,7 +89,7 @@ struct MapperSettings {
   PictureSettings pictures;
   // Keyframes (and pose updates) farther than this from the world origin (the tracker's first camera) are
   // refused: the 2-D grid spans every keyframe, so one forged pose 1.6 km away would ask for a grid of
-  // 64000^2 cells. 200 m at 5 cm cells bounds the grid to about 8100^2 (66 MB).
+  // 64000^2 cells. 200 m (plus 5 m of range) at 5 cm cells bounds the grid to about 8200^2 cells (67 MB).
   double world_radius_m = 200.0;
 };
 
