@@ -2,16 +2,22 @@
 // reader on the mapper's own files, and the bmp-plan executable on a map the mapper wrote.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
+#include "bmp/lcm/lcm_node.hpp"
+#include "lcm_url.hpp"
 #include "mapper/grid_files.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper_test_util.hpp"
 #include "plan/astar.hpp"
+#include "plan/live_grid.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::plan {
@@ -147,6 +153,68 @@ TEST_F(PlanTool, FindsAPathBetweenFreeCellsAndNoneBeyondTheWall) {
   EXPECT_NE(test::readFirstLine((dir / "path.txt").string()).find("# x y"), std::string::npos);
   EXPECT_EQ(plan("0,0.8", "0,4.0", out), 1) << out;  // behind the wall: unknown, and the wall is in the way
   EXPECT_NE(out.find("no path"), std::string::npos) << out;
+}
+
+occupancy_grid_t gridMessage(int width, int height) {
+  occupancy_grid_t m{};
+  m.resolution = 0.05f;
+  m.width = width;
+  m.height = height;
+  m.num_cells = width * height;
+  m.cells.assign(static_cast<std::size_t>(m.num_cells), kFree);
+  m.origin.position[0] = 1.0;
+  m.origin.orientation[0] = 1.0;  // w first, identity
+  return m;
+}
+
+// OCCUPANCY_GRID is open to any publisher: sizes, resolution and origin are checked before use.
+TEST(LiveGrid, AnInconsistentGridIsRefusedWithTheReason) {
+  const PlanGrid good = planGridFromMessage(gridMessage(4, 3));
+  EXPECT_EQ(good.width, 4);
+  EXPECT_NEAR(good.origin.x(), 1.0, 1e-9);
+  occupancy_grid_t cells = gridMessage(4, 3), nan_origin = cells, inf_resolution = cells, quaternion = cells;
+  cells.num_cells = 11;
+  nan_origin.origin.position[1] = std::nan("");
+  inf_resolution.resolution = INFINITY;
+  quaternion.origin.orientation[0] = 0.0;
+  EXPECT_THROW(planGridFromMessage(cells), MapFileError);
+  EXPECT_THROW(planGridFromMessage(inf_resolution), MapFileError);
+  for (const occupancy_grid_t& m : {nan_origin, quaternion}) {
+    try {
+      planGridFromMessage(m);
+      ADD_FAILURE() << "an unusable origin was taken";
+    } catch (const MapFileError& e) {
+      EXPECT_NE(std::string(e.what()).find("origin not finite"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// bmp-plan --live: an unusable grid (another publisher's) is waited past, not taken as "no grid".
+TEST(LiveGrid, AnUnusableGridIsWaitedPastForAGoodOne) {
+  const std::string url = test::uniqueLcmUrl(5);
+  std::atomic<bool> done{false};
+  std::thread publisher([&] {
+    LcmNode node(url);
+    occupancy_grid_t bad = gridMessage(4, 3);
+    bad.num_cells = 5;
+    const occupancy_grid_t good = gridMessage(7, 2);
+    for (int round = 0; round < 200 && !done; ++round) {
+      node.publish("GRID", bad);  // first, every round
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (round >= 5) node.publish("GRID", good);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  PlanGrid got;
+  try {
+    got = receiveLiveGrid(url, "GRID", 10.0);
+  } catch (const MapFileError& e) {
+    ADD_FAILURE() << e.what();
+  }
+  done = true;
+  publisher.join();
+  EXPECT_EQ(got.width, 7);
+  EXPECT_EQ(got.height, 2);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <bmp/occupancy_grid_t.hpp>
 
+#include <cmath>
 #include <optional>
 #include <sstream>
 
@@ -11,12 +12,19 @@
 
 namespace bmp::plan {
 
-namespace {
-
-PlanGrid fromMessage(const occupancy_grid_t& m) {
-  if (!(m.resolution > 0) || m.width <= 0 || m.height <= 0 ||
+PlanGrid planGridFromMessage(const occupancy_grid_t& m) {
+  if (!(m.resolution > 0) || !std::isfinite(m.resolution) || m.width <= 0 || m.height <= 0 ||
       static_cast<int64_t>(m.width) * m.height != m.num_cells)
     throw MapFileError("OCCUPANCY_GRID message: inconsistent size or resolution");
+  double norm2 = 0;
+  bool finite = true;
+  for (double q : m.origin.orientation) {
+    norm2 += q * q;
+    finite = finite && std::isfinite(q);
+  }
+  for (double t : m.origin.position) finite = finite && std::isfinite(t);
+  if (!finite || std::abs(std::sqrt(norm2) - 1.0) > 1e-3)
+    throw MapFileError("OCCUPANCY_GRID message: origin not finite, or its quaternion not a unit one");
   PlanGrid grid;
   grid.resolution = m.resolution;
   grid.width = m.width;
@@ -28,22 +36,23 @@ PlanGrid fromMessage(const occupancy_grid_t& m) {
   return grid;
 }
 
-}  // namespace
-
 PlanGrid receiveLiveGrid(const std::string& lcm_url, const std::string& channel, double timeout_s) {
   LcmNode node(resolveLcmUrl(lcm_url));
-  std::optional<occupancy_grid_t> latest;
-  node.subscribe<occupancy_grid_t>(channel,
-                                   [&](const occupancy_grid_t& m, const ReceivedInfo&) { latest = m; });
+  std::optional<PlanGrid> latest;
+  // Checked as it arrives: an inconsistent grid (another publisher's) is reported and counted by the node,
+  // and the wait goes on for a good one.
+  node.subscribe<occupancy_grid_t>(
+      channel, [&](const occupancy_grid_t& m, const ReceivedInfo&) { latest = planGridFromMessage(m); });
   Stopwatch watch;
   while (!latest && watch.elapsedMs() < timeout_s * 1000.0) node.handle(100);
   if (!latest) {
     std::ostringstream why;
-    why << "no " << channel << " message within " << timeout_s
-        << " s (is bmp-mapper running on this LCM URL?)";
+    why << "no " << channel << " message within " << timeout_s << " s";
+    if (node.malformedCount() > 0) why << " that could be used (" << node.malformedCount() << " refused)";
+    why << " (is bmp-mapper running on this LCM URL?)";
     throw MapFileError(why.str());
   }
-  return fromMessage(*latest);
+  return *latest;
 }
 
 }  // namespace bmp::plan
