@@ -6,7 +6,9 @@
 //                     the person by depth; a chair or cup box counts only when held or seen moving);
 //   2. applyPriors()  before each pose optimisation: each keypoint's prior is the posterior of the map point
 //                     it matched (else 0.5), updated by z;
-//   3. conclude()     after the final pose, with kGeometric: an unmatched keypoint's prior becomes that of
+//   3. conclude()     after the final pose: in every Bayesian mode a keypoint matched to no map point but
+//                     tracked to a last-frame keypoint takes that keypoint's posterior as prior (the
+//                     paper's); with kGeometric, besides: an unmatched keypoint's prior becomes that of
 //                     matched neighbours at its depth; each matched point's residual against the camera
 //                     motion is a second observation; so is each unmatched keypoint's residual against its
 //                     last-frame keypoint, tracked over a wide window (keypoint_tracks.hpp), which also
@@ -63,6 +65,10 @@ class DynamicStage {
   void observeGeometry(Frame& frame, int i, bool moved) const;
   void observeTracks(Frame& frame, const FrameGeometry& g, const Frame& last,
                      std::vector<int8_t>& verdict) const;
+  // Per keypoint matched to no map point, its last-frame keypoint (keypoint_tracks.hpp), or -1.
+  std::vector<int> tracksToLast(const Frame& frame, const FrameGeometry& g, const Frame& last) const;
+  // Keypoint i's prior is its last-frame keypoint's posterior (carried), updated by this frame's boxes.
+  void takeTrackPrior(Frame& frame, int i, double last_posterior) const;
   void observeMovingClusters(Frame& frame, const FrameGeometry& g, const std::vector<int8_t>& verdict) const;
   // Whether keypoint i lies beyond the geometric limit from where p_world projects under the frame's pose.
   bool movedAgainstPose(const Frame& frame, const FrameGeometry& g, int i,

@@ -39,7 +39,7 @@ int similarity(const Features& f, const std::vector<int>& sample, const KeyFrame
 }  // namespace
 
 std::shared_ptr<KeyFrame> relocalize(Frame& frame, const Map& map, const FrameGeometry& g,
-                                     const TrackerConfig& config) {
+                                     const TrackerConfig& config, const DynamicStage& dynamic) {
   const Features& f = *frame.features;
   const auto& rc = config.reloc;
   const auto& tc = config.tracking;
@@ -91,6 +91,7 @@ std::shared_ptr<KeyFrame> relocalize(Frame& frame, const Map& map, const FrameGe
     }
     frame.setPose(normalized(T_cam_world).inverse());
     for (int k : inliers) frame.points[index[k]] = matches[index[k]];
+    dynamic.applyPriors(frame);
     if (optimizeFramePose(frame, g, config.pose) < rc.min_pnp_inliers) continue;
     dropOutliers(frame);
     // Grow the matches with the keyframe's neighbourhood, then refine again.
@@ -102,6 +103,7 @@ std::shared_ptr<KeyFrame> relocalize(Frame& frame, const Map& map, const FrameGe
       for (const auto& mp : k->points)
         if (mp && !mp->bad && seen.insert(mp.get()).second) local.push_back(mp);
     matchLocalPoints(frame, local, g, tc, config.matcher, tc.reloc_search_radius * 2.0);
+    dynamic.applyPriors(frame);
     const int good = optimizeFramePose(frame, g, config.pose);
     if (good >= tc.min_inliers_after_reloc) {
       dropOutliers(frame);

@@ -192,9 +192,11 @@ struct DynamicOptions {
   // depth), so the rest of a mover's keypoints are not each a fresh 0.5.
   double neighbour_radius_px = 24.0;
   double neighbour_depth_m = 0.3;
-  // Geometric: an unmatched keypoint is tracked to the last frame's keypoint with its descriptor (at most
+  // An unmatched keypoint is tracked to the last frame's keypoint with its descriptor (at most
   // track_max_distance, ratio to the second best under track_ratio) within track_radius_px of where that one
-  // would be if static (0: off); a mover the detector does not know moves beyond the matcher's windows.
+  // would be if static (0: off), and takes its posterior as prior (every Bayesian mode, as the paper does);
+  // geometric also judges its residual: a mover the detector does not know moves beyond the matcher's
+  // windows.
   double track_radius_px = 40.0;
   int track_max_distance = 50;
   double track_ratio = 0.8;

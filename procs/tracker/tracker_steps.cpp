@@ -175,7 +175,7 @@ cv::Mat Tracker::keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, c
 }
 
 bool Tracker::relocalise(Frame& frame) {
-  auto kf = relocalize(frame, map_, *geometry_, config_);
+  auto kf = relocalize(frame, map_, *geometry_, config_, dynamic_);
   if (!kf) return false;
   reference_kf_ = kf;
   return true;

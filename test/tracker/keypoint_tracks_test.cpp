@@ -111,21 +111,23 @@ TEST(KeypointTracks, EqualTheirDefinitionWhenOnlySomeKeypointsAreOpen) {
   EXPECT_EQ(track, expected);
 }
 
-// Share of keypoints kept out on the box and in the room, frame by frame, with no box from the detector.
+// Share of keypoints kept out on the box and in the room, frame by frame. The detector answers each frame;
+// with no box it knows unless person_until says it finds the box as a person up to that frame.
 struct KeptOut {
   double box = 0.0, room = 0.0;
 };
-std::vector<KeptOut> run(const DynamicOptions& options, int frames) {
+std::vector<KeptOut> run(const DynamicOptions& options, int frames, int person_until = -1) {
   const SlidingBox scene;
   const Rig s;
   const DynamicStage stage(options, s.config.pose);
-  const std::vector<ObjectBox> none;  // the detector answered and saw nothing it knows
   std::vector<KeptOut> out;
   Frame last;
   for (int i = 0; i < frames; ++i) {
     Frame f = s.frame(scene, i);
     const Frame* previous = last.features ? &last : nullptr;
-    stage.observe(f, &none, previous);
+    std::vector<ObjectBox> boxes;
+    if (i <= person_until) boxes.push_back({cv::Rect2f(scene.where(i)), DynamicLevel::kHigh, 0, 0.9f});
+    stage.observe(f, &boxes, previous);
     stage.applyPriors(f);
     stage.conclude(f, s.g, previous);
     int box = 0, box_out = 0, room = 0, room_out = 0;
@@ -160,6 +162,24 @@ TEST(GeometricObservation, KeepsAMoverNoDetectorKnowsOutWithinTwoFrames) {
   DynamicOptions untracked = geometric;
   untracked.track_radius_px = 0.0;
   for (const KeptOut& k : run(untracked, 6)) EXPECT_LT(k.box, 0.05);
+}
+
+// The paper's prior for a keypoint matched to no map point is its last-frame keypoint's posterior. Frames
+// in a person box raise a tracked keypoint's posterior (0.5 -> 0.9 -> 0.988 -> ...); on the frame the
+// detector misses the box, one static observation leaves those tracked twice or more over the threshold
+// (0.988 -> 0.9), where a fresh 0.5 falls to 0.1. Tracks break now and then (a descriptor changes, the
+// ratio test fails), so this holds for part of the box: 43 % when this was written.
+TEST(PapersPrior, AKeypointKeepsItsHistoryWhenTheBoxIsMissedForAFrame) {
+  ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
+  DynamicOptions paper;
+  paper.mode = DynamicMode::kPaper;
+  const std::vector<KeptOut> r = run(paper, 4, 2);
+  for (int i = 0; i < 3; ++i) EXPECT_GE(r[i].box, 0.95) << "frame " << i << ", in the box";
+  EXPECT_GE(r[3].box, 0.3) << "the frame the box was missed";
+  EXPECT_LE(r[3].room, 0.02);
+  DynamicOptions untracked = paper;
+  untracked.track_radius_px = 0.0;
+  EXPECT_LT(run(untracked, 4, 2)[3].box, 0.05) << "without the track, each keypoint starts at 0.5";
 }
 
 }  // namespace
