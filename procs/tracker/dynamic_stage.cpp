@@ -275,14 +275,20 @@ void DynamicStage::observeMovingClusters(Frame& frame, const FrameGeometry& g,
 void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const {
   if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
   const std::vector<int8_t> z = boxObservation(*kf.features, boxes, {});
+  // Observed with stand-in boxes, the frame's probabilities hold their observation: the frame's own
+  // answer takes its place (withdrawn, then applied), so the frame counts once.
+  const bool replace = kf.stand_in_z.size() == z.size();
+  const auto observe = [&](double p, std::size_t i) {
+    if (replace) p = withdrawObservation(p, kf.stand_in_z[i] != 0, bayes_);
+    return clampProbability(updateMovingProbability(p, z[i] != 0, bayes_));
+  };
   for (std::size_t i = 0; i < z.size(); ++i) {
-    kf.moving[i] = clampProbability(updateMovingProbability(kf.moving[i], z[i] != 0, bayes_));
+    kf.moving[i] = observe(kf.moving[i], i);
     kf.dynamic[i] = isDynamic(kf.moving[i], bayes_);
     const auto& mp = kf.points[i];
-    if (usableMatch(mp))
-      mp->moving_probability =
-          clampProbability(updateMovingProbability(mp->moving_probability, z[i] != 0, bayes_));
+    if (usableMatch(mp)) mp->moving_probability = observe(mp->moving_probability, i);
   }
+  kf.stand_in_z.clear();
 }
 
 cv::Mat DynamicStage::mask(const Features& f, const std::vector<uint8_t>& dynamic,

@@ -38,10 +38,13 @@ class DynamicStage {
   // whose dynamic keypoints are the evidence that a medium box moves.
   void observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const;
   void applyPriors(Frame& frame) const;
-  // last: the previous frame (or null); with kGeometric its keypoints are tracked to this frame's unmatched
-  // ones (keypoint_tracks.hpp), and each such track is judged as a matched point is.
+  // last: the previous frame (or null); its keypoints are tracked to this frame's unmatched ones
+  // (keypoint_tracks.hpp), whose prior they become; with kGeometric each track is judged as a matched
+  // point is.
   void conclude(Frame& frame, const FrameGeometry& g, const Frame* last) const;
-  // A keyframe's late boxes (they came after it was tracked): its map points take the observation.
+  // A keyframe's late boxes (they came after it was tracked): it and its map points take the observation,
+  // in place of the stand-in boxes' observation when its frame was observed with those
+  // (KeyFrame::stand_in_z).
   void observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const;
   // The boxes that count as moving for these keypoints, each cut to the mover by depth when configured:
   // per box, the depth band [near, far] in metres of the mover (0, inf when not refined).

@@ -11,7 +11,8 @@ KeyFrame::KeyFrame(int64_t i, const Frame& frame)
       features(frame.features),
       points(frame.points),
       moving(frame.moving),
-      dynamic(frame.dynamic) {
+      dynamic(frame.dynamic),
+      stand_in_z(frame.box_z_stand_in ? frame.box_z : std::vector<int8_t>{}) {
   setPose(frame.T_world_cam());
   for (std::size_t k = 0; k < points.size(); ++k)
     if (points[k] && (frame.outlier[k] || points[k]->temporary() || points[k]->bad)) points[k].reset();

@@ -24,6 +24,9 @@ class KeyFrame {
   std::vector<std::shared_ptr<MapPoint>> points;  // per keypoint
   std::vector<float> moving;                      // per keypoint P(dynamic) when it was made (Frame::moving)
   std::vector<uint8_t> dynamic;                   // per keypoint: over the threshold, so no new points here
+  // The box observation its frame took from stand-in boxes (empty otherwise): its own answer, when it comes
+  // late, replaces it (DynamicStage::observeLate) instead of counting twice.
+  std::vector<int8_t> stand_in_z;
 
   void setPose(const SE3& T_world_cam);
   const SE3& T_world_cam() const { return T_world_cam_; }

@@ -83,6 +83,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
   {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.observe(frame, boxes ? &*boxes : nullptr, last_frame_.features ? &last_frame_ : nullptr);
+    frame.box_z_stand_in = input.boxes_stand_in && !frame.box_z.empty();
   }
   {
     Stopwatch wait;

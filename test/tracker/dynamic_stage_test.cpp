@@ -48,6 +48,24 @@ TEST(MovingProbability, PropagatesOverFramesAndCrossesTheThreshold) {
   EXPECT_EQ(updateMovingProbability(1.5, true, o), 1.0);
 }
 
+// A frame observed with stand-in boxes takes its own answer later in their place: withdrawing an
+// observation undoes its update exactly, so the frame counts once.
+TEST(MovingProbability, AWithdrawnObservationUndoesItsUpdate) {
+  MovingProbabilityOptions o;
+  for (const double lambda : {0.9, 0.7})
+    for (const double p : {0.001, 0.1, 0.5, 0.83, 0.999})
+      for (const bool z : {true, false}) {
+        o.lambda = lambda;
+        EXPECT_NEAR(withdrawObservation(updateMovingProbability(p, z, o), z, o), p, 1e-12);
+      }
+  // A stand-in said d (0.5 -> 0.9); the real answer says s: withdrawn and applied, 0.1, as if the frame
+  // had had its own answer; applied on top, 0.5.
+  o = {};
+  const double stand_in = updateMovingProbability(0.5, true, o);
+  EXPECT_NEAR(updateMovingProbability(withdrawObservation(stand_in, true, o), false, o), 0.1, 1e-12);
+  EXPECT_NEAR(updateMovingProbability(stand_in, false, o), 0.5, 1e-12);
+}
+
 cv::KeyPoint at(float x, float y) {
   return cv::KeyPoint(cv::Point2f(x, y), 7.0f);
 }

@@ -10,6 +10,7 @@
 
 #include "room_rig.hpp"
 #include "tracker/dynamic_stage.hpp"
+#include "tracker/key_frame.hpp"
 #include "tracker/keypoint_tracks.hpp"
 #include "tracker/matcher.hpp"
 
@@ -180,6 +181,41 @@ TEST(PapersPrior, AKeypointKeepsItsHistoryWhenTheBoxIsMissedForAFrame) {
   DynamicOptions untracked = paper;
   untracked.track_radius_px = 0.0;
   EXPECT_LT(run(untracked, 4, 2)[3].box, 0.05) << "without the track, each keypoint starts at 0.5";
+}
+
+// Real time: a frame observed with a stand-in box (the newest earlier answer, its own not come) becomes a
+// keyframe; its own answer comes late and finds nothing there. The answer takes the stand-in's place: the
+// box's keypoints fall to 0.1, as if the frame had had its own answer, not to 0.5 (both counted).
+TEST(LateBoxes, TakeThePlaceOfTheStandInsTheFrameWasObservedWith) {
+  ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
+  const SlidingBox scene;
+  const Rig s;
+  DynamicOptions paper;
+  paper.mode = DynamicMode::kPaper;
+  const DynamicStage stage(paper, s.config.pose);
+  const std::vector<ObjectBox> stand_in{{cv::Rect2f(scene.where(0)), DynamicLevel::kHigh, 0, 0.9f}};
+  const std::vector<ObjectBox> own;  // the detector's own answer: nothing it knows
+  for (const bool flagged : {true, false}) {
+    Frame f = s.frame(scene, 0);
+    stage.observe(f, &stand_in, nullptr);
+    stage.applyPriors(f);
+    f.box_z_stand_in = flagged;
+    KeyFrame kf(0, f);
+    int in_box = 0;
+    for (int k = 0; k < f.features->size(); ++k) {
+      if (!inside(scene.where(0), f.features->keys[k].pt, 6)) continue;
+      ++in_box;
+      ASSERT_NEAR(kf.moving[k], 0.9, 1e-6);
+    }
+    ASSERT_GT(in_box, 20);
+    stage.observeLate(kf, own);
+    for (int k = 0; k < f.features->size(); ++k) {
+      if (!inside(scene.where(0), f.features->keys[k].pt, 6)) continue;
+      EXPECT_NEAR(kf.moving[k], flagged ? 0.1 : 0.5, 1e-6) << (flagged ? "replaced" : "counted on top");
+      EXPECT_FALSE(kf.dynamic[k]);
+    }
+    EXPECT_TRUE(kf.stand_in_z.empty()) << "an answer replaces the stand-in once";
+  }
 }
 
 }  // namespace
