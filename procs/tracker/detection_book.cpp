@@ -17,6 +17,9 @@ void eraseOtherStamps(Map& by_key, int64_t seq, int64_t utime) {
 
 void DetectionBook::frameHeard(int64_t seq, int64_t utime) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  // Frames are heard in seq order but for a restarted capture (seq from 0 again): the old stream's are
+  // forgotten, or the newest would be the first pushed out below.
+  if (!heard_.empty() && seq < heard_.rbegin()->first) heard_.clear();
   heard_[seq] = utime;
   while (heard_.size() > capacity_) heard_.erase(heard_.begin());
   eraseOtherStamps(by_frame_, seq, utime);

@@ -109,6 +109,16 @@ TEST(DetectionBook, OnceTheFrameIsHeardOtherStampsAreRefused) {
   EXPECT_EQ(got->boxes.size(), 3u);
 }
 
+// A restarted capture (seq from 0 again) is heard as a new stream: the rule holds for its frames too.
+TEST(DetectionBook, AfterACaptureRestartTheNewFramesAreTheHeardOnes) {
+  DetectionBook book(4);
+  for (int64_t seq = 100; seq < 110; ++seq) book.frameHeard(seq, seq * 1000);
+  book.frameHeard(0, 7);
+  EXPECT_NE(book.add(0, answer(8, 1)), "") << "another stamp for the new stream's frame 0";
+  EXPECT_EQ(book.add(0, answer(7, 1)), "");
+  EXPECT_EQ(book.add(105, answer(1, 1)), "") << "the old stream's frames are forgotten";
+}
+
 // A flood of forged answers for frames not heard yet (varying stamps) holds at most kMaxPerSeq per seq, so
 // it cannot push out the real answers waiting in the book.
 TEST(DetectionBook, AFloodForOneFutureFrameIsBounded) {
