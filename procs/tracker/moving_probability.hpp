@@ -19,7 +19,7 @@ double updateMovingProbability(double prior, bool observed_dynamic, const Moving
 // The inverse: the probability before an observation z was taken into `posterior` (its likelihood ratio
 // divided out). A frame observed with stand-in boxes (real time, its own answer late) takes its own answer
 // in their place this way, not on top of them.
-double withdrawObservation(double posterior, bool observed_dynamic, const MovingProbabilityOptions& o);
+double withdrawObservation(double posterior_after, bool observed_dynamic, const MovingProbabilityOptions& o);
 
 inline bool isDynamic(double p, const MovingProbabilityOptions& o) {
   return p > o.threshold;

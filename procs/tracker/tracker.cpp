@@ -83,7 +83,6 @@ TrackResult Tracker::track(const TrackerInput& input) {
   {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.observe(frame, boxes ? &*boxes : nullptr, last_frame_.features ? &last_frame_ : nullptr);
-    frame.box_z_stand_in = input.boxes_stand_in && !frame.box_z.empty();
   }
   {
     Stopwatch wait;
@@ -109,15 +108,7 @@ TrackResult Tracker::track(const TrackerInput& input) {
       if (tracked && state_ == TrackingState::kLost) last_reloc_seq_ = frame.seq;
       if (tracked) {
         state_ = last_reloc_seq_ == frame.seq ? TrackingState::kRelocalised : TrackingState::kOk;
-        // After relocalisation the last frame is from before the loss: no velocity from it.
-        if (state_ == TrackingState::kOk) {
-          velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
-          velocity_dt_ = frame.stamp - last_frame_.stamp;
-          motion_prior_.observe(last_frame_.center(), velocity_dt_,
-                                {frame.stamp, frame.center(), frame.position_std_m, false});
-        } else {
-          forgetMotion();
-        }
+        followMotion(frame);
         // Before a new keyframe adds its points: the pose's own inliers.
         result.keypoint_in_pose.resize(frame.points.size());
         for (std::size_t i = 0; i < frame.points.size(); ++i) result.keypoint_in_pose[i] = inPose(frame, i);
@@ -155,6 +146,15 @@ TrackResult Tracker::track(const TrackerInput& input) {
   return result;
 }
 
+void Tracker::followMotion(const Frame& frame) {
+  // After relocalisation the last frame is from before the loss: no velocity from it.
+  if (state_ != TrackingState::kOk) return forgetMotion();
+  velocity_ = last_frame_.T_cam_world() * frame.T_world_cam();
+  velocity_dt_ = frame.stamp - last_frame_.stamp;
+  motion_prior_.observe(last_frame_.center(), velocity_dt_,
+                        {frame.stamp, frame.center(), frame.position_std_m, false});
+}
+
 Frame Tracker::makeFrame(const TrackerInput& input, const std::optional<std::vector<ObjectBox>>& boxes,
                          TrackResult& result) const {
   Stopwatch watch;
@@ -170,7 +170,9 @@ Frame Tracker::makeFrame(const TrackerInput& input, const std::optional<std::vec
   result.num_keypoints = features->size();
   result.num_excluded = features->numExcluded();
   result.extract_ms = watch.elapsedMs();
-  return Frame(input.seq, input.stamp, std::move(features));
+  Frame frame(input.seq, input.stamp, std::move(features));
+  frame.box_z_stand_in = input.boxes_stand_in;
+  return frame;
 }
 
 SparseRegions Tracker::sparseRegions(const std::optional<std::vector<ObjectBox>>& boxes) const {

@@ -124,6 +124,8 @@ class Tracker {
   const TrackerConfig& config() const { return config_; }
 
  private:
+  // A tracked frame's velocity and the motion prior's sample (OK), or none after relocalisation.
+  void followMotion(const Frame& frame);
   Frame makeFrame(const TrackerInput& input, const std::optional<std::vector<ObjectBox>>& boxes,
                   TrackResult& result) const;
   bool initialise(Frame& frame, TrackResult& result);
