@@ -186,13 +186,13 @@ TEST(BenchTrackerDrops, TheSameSeedDropsTheSameFramesAndTrackingGoesOn) {
   EXPECT_EQ(figure(again.output, "ATE rmse m"), figure(a.output, "ATE rmse m")) << again.output;
 }
 
-// Bonn's first 300 frames, inline, the detector's boxes each box_lag frames late, frames dropped with seed 2:
-// a burst falls in the fast turn at 5.5 s.
-Outcome runTurn(const std::string& name, const std::string& box_lag) {
+// Bonn's first 300 frames, inline, the detector's boxes each box_lag frames late, frames dropped with
+// drop_seed (seed 2: a burst falls in the fast turn at 5.5 s).
+Outcome runTurn(const std::string& name, const std::string& box_lag, const std::string& drop_seed = "2") {
   return runCommand(
       name,
       {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--frames", "300", "--inline-mapping",
-       "--detector", "--box-lag", box_lag, "--drop-bursts", "0.1", "--drop-seed", "2"},
+       "--detector", "--box-lag", box_lag, "--drop-bursts", "0.1", "--drop-seed", drop_seed},
       kTimeoutS);
 }
 
@@ -208,9 +208,11 @@ std::pair<int, int> gapChecks(const std::string& output) {
 // points; the reference keyframe's matches keep 90 and their pose, searched around again, takes over
 // (tracking.recheck_*, on by default). In threaded runs such a guess has led the tracker 30 cm astray; here
 // (inline mapping, reproducible) the check must happen, take the reference keyframe's pose once, and the
-// frames stay within 6 cm (5.2 measured; 3.2 with the check off).
+// frames stay within 6 cm (5.2 measured; 3.2 with the check off). Since 2ccad10 (a late answer replaces
+// its frame's stand-in) seed 2's guess after that burst is close enough that the check keeps it (1 check,
+// none taken, 2.6 cm at worst); seed 7 has a guess the check replaces (2 checks, 1 taken, 2.3 cm at worst).
 TEST(BenchTrackerDrops, AGuessFarOffAfterAGapIsCheckedAgainstTheReferenceKeyFrame) {
-  const Outcome o = runTurn("drops_turn", "3");
+  const Outcome o = runTurn("drops_turn", "3", "7");
   ASSERT_EQ(o.status, 0) << o.output;
   const auto [checked, taken] = gapChecks(o.output);
   EXPECT_GE(checked, 1) << o.output;
