@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
@@ -179,12 +180,14 @@ TEST(LiveGrid, AnInconsistentGridIsRefusedWithTheReason) {
   quaternion.origin.orientation[0] = 0.0;
   EXPECT_THROW(planGridFromMessage(cells), MapFileError);
   EXPECT_THROW(planGridFromMessage(inf_resolution), MapFileError);
-  for (const occupancy_grid_t& m : {nan_origin, quaternion}) {
+  const std::pair<occupancy_grid_t, const char*> origins[] = {
+      {nan_origin, "origin: non-finite pose"}, {quaternion, "origin: pose quaternion is not a unit"}};
+  for (const auto& [m, reason] : origins) {
     try {
       planGridFromMessage(m);
       ADD_FAILURE() << "an unusable origin was taken";
     } catch (const MapFileError& e) {
-      EXPECT_NE(std::string(e.what()).find("origin not finite"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
     }
   }
 }

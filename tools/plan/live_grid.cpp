@@ -16,15 +16,8 @@ PlanGrid planGridFromMessage(const occupancy_grid_t& m) {
   if (!(m.resolution > 0) || !std::isfinite(m.resolution) || m.width <= 0 || m.height <= 0 ||
       static_cast<int64_t>(m.width) * m.height != m.num_cells)
     throw MapFileError("OCCUPANCY_GRID message: inconsistent size or resolution");
-  double norm2 = 0;
-  bool finite = true;
-  for (double q : m.origin.orientation) {
-    norm2 += q * q;
-    finite = finite && std::isfinite(q);
-  }
-  for (double t : m.origin.position) finite = finite && std::isfinite(t);
-  if (!finite || std::abs(std::sqrt(norm2) - 1.0) > 1e-3)
-    throw MapFileError("OCCUPANCY_GRID message: origin not finite, or its quaternion not a unit one");
+  if (const std::string why = checkPoseMessage(m.origin); !why.empty())
+    throw MapFileError("OCCUPANCY_GRID message: origin: " + why);
   PlanGrid grid;
   grid.resolution = m.resolution;
   grid.width = m.width;

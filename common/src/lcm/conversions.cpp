@@ -1,5 +1,7 @@
 #include "bmp/lcm/conversions.hpp"
 
+#include <cmath>
+
 namespace bmp {
 
 pose_t toMsg(const SE3& T) {
@@ -16,6 +18,16 @@ pose_t toMsg(const SE3& T) {
 SE3 fromMsg(const pose_t& msg) {
   const Eigen::Quaterniond q(msg.orientation[0], msg.orientation[1], msg.orientation[2], msg.orientation[3]);
   return makeSE3({msg.position[0], msg.position[1], msg.position[2]}, q);
+}
+
+std::string checkPoseMessage(const pose_t& msg) {
+  double norm2 = 0;
+  for (double q : msg.orientation) norm2 += q * q;
+  bool finite = std::isfinite(norm2);
+  for (double t : msg.position) finite = finite && std::isfinite(t);
+  if (!finite) return "non-finite pose";
+  if (std::abs(std::sqrt(norm2) - 1.0) > 1e-3) return "pose quaternion is not a unit quaternion";
+  return "";
 }
 
 camera_t toMsg(const CameraIntrinsics& k) {

@@ -1,7 +1,5 @@
 #include "mapper/lcm/mapper_messages.hpp"
 
-#include <cmath>
-
 #include "bmp/common/image_codec.hpp"
 #include "bmp/common/stamp.hpp"
 #include "bmp/lcm/conversions.hpp"
@@ -11,17 +9,6 @@ namespace bmp::mapper {
 namespace {
 
 const char* const kWorld = "world";
-
-// A pose's quaternion must be a unit one as sent: normalising a forged (0, 0, 0, 0) would invent a rotation.
-std::string checkPoseMessage(const pose_t& pose) {
-  double norm2 = 0;
-  for (double q : pose.orientation) norm2 += q * q;
-  bool finite = std::isfinite(norm2);
-  for (double t : pose.position) finite = finite && std::isfinite(t);
-  if (!finite) return "non-finite pose";
-  if (std::abs(std::sqrt(norm2) - 1.0) > 1e-3) return "pose quaternion is not a unit quaternion";
-  return "";
-}
 
 }  // namespace
 
