@@ -130,15 +130,44 @@ TEST(FrameStream, TheLastFrameAgainIsARepeat) {
 
 TEST(FrameStream, ACameraChangeMidRunIsRefusedClearly) {
   FrameStream s;
-  ASSERT_TRUE(s.accept(frame(0)).ok);
-  auto other = frame(1, 10, 6);
+  const int settle = FrameStreamLimits{}.settle_frames;
+  for (int64_t seq = 0; seq < settle; ++seq) {
+    const auto v = s.accept(frame(seq));
+    ASSERT_TRUE(v.ok);
+    EXPECT_EQ(v.camera_settled, seq + 1 == settle) << seq;
+  }
+  auto other = frame(settle, 10, 6);
   const auto v = s.accept(other);
   EXPECT_FALSE(v.ok);
   EXPECT_NE(v.reason.find("camera changed mid-run"), std::string::npos) << v.reason;
-  auto scaled = frame(2);
+  auto scaled = frame(settle + 1);
   scaled.depth_scale = 1000;
   EXPECT_FALSE(s.accept(scaled).ok);
-  EXPECT_TRUE(s.accept(frame(3)).ok);
+  EXPECT_TRUE(s.accept(frame(settle + 2)).ok);
+  EXPECT_EQ(s.cameraChanges(), 0);
+}
+
+// One forged frame (another camera, a seq far ahead) before the capture's first must not lock the real
+// camera out: until the first camera settles, another replaces it, and the verdict tells the consumer to
+// drop what it built from the forged frame.
+TEST(FrameStream, AForgedFirstFrameDoesNotPinItsCamera) {
+  FrameStream s;
+  auto forged = frame(900, 10, 6);
+  ASSERT_TRUE(s.accept(forged).ok);
+  const auto v = s.accept(frame(0));
+  EXPECT_TRUE(v.ok);
+  EXPECT_TRUE(v.new_camera);
+  EXPECT_FALSE(v.camera_settled);
+  EXPECT_NE(v.reason.find("which came with only 1 frame(s)"), std::string::npos) << v.reason;
+  for (int64_t seq = 1; seq < 20; ++seq) {
+    const auto next = s.accept(frame(seq));
+    EXPECT_TRUE(next.ok && !next.new_camera) << seq << ": " << next.reason;
+  }
+  EXPECT_FALSE(s.accept(frame(20, 10, 6)).ok);  // settled now: the forged camera is refused
+  EXPECT_EQ(s.cameraChanges(), 1);
+  EXPECT_EQ(s.lostBefore(), 0);
+  ASSERT_NE(s.camera(), nullptr);
+  EXPECT_EQ(s.camera()->width, frame(0).camera.width);
 }
 
 // One forged frame with an absurd seq or stamp must not make every later real frame look old.

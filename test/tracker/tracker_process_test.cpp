@@ -296,6 +296,35 @@ TEST(TrackerProcess, CameraChangeAndStampsOutOfOrderAreRefused) {
   for (std::size_t i = 1; i < written.size(); ++i) EXPECT_GT(written[i].stamp, written[i - 1].stamp);
 }
 
+// One forged frame of another camera, far ahead in seq, before capture's first: it must not lock the real
+// camera out. The real frames replace its camera, the map started from it is dropped, and none of its
+// keyframes reaches the mapper: every keyframe sent has the real camera, the first with id 0.
+TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
+  TrackerUnderTest t("tracker_forged_first_frame", 5);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  rgbd_frame_t forged = t.frame(0);
+  forged.seq = 900;
+  forged.camera.fx *= 1.5;
+  ASSERT_TRUE(t.publishAndWait(forged));
+  for (int i = 0; i < 10; ++i) {
+    ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+    EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK)) << i;
+  }
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  // Keyframes wait for their boxes (no detector here) until the hold is up or the tracker stops.
+  ASSERT_TRUE(t.pumpUntil([&] { return !t.keyframes.empty(); }, 5.0));
+  EXPECT_EQ(t.keyframes.front().id, 0);
+  for (const keyframe_t& kf : t.keyframes) EXPECT_DOUBLE_EQ(kf.camera.fx, bonnCamera().fx) << kf.id;
+  const Trajectory written = readTumTrajectory(t.trajectory());
+  ASSERT_EQ(written.size(), 10u);  // the real frames only
+  EXPECT_NEAR(written.front().stamp, utimeToSeconds(t.frame(0).utime), 1e-6);
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("which came with only 1 frame(s); starting again with this one"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("dropping the map of 1 keyframe(s) (1 not yet sent to the mapper)"), std::string::npos)
+      << log;
+}
+
 // Answers from another publisher: one for an image of another size, one naming a frame already heard with
 // another stamp. Each is refused with the reason (counted as malformed), and tracking goes on.
 TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {

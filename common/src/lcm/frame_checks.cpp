@@ -101,7 +101,20 @@ FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note
   last_ = {msg.seq, msg.utime};
   candidate_run_ = 0;
   ++accepted_;
-  return {true, std::move(note), 0};
+  ++with_camera_;
+  Verdict v{true, std::move(note), 0};
+  v.camera_settled = with_camera_ >= limits_.settle_frames;
+  return v;
+}
+
+FrameStream::Verdict FrameStream::pin(const rgbd_frame_t& msg, std::string note) {
+  rgbd_frame_t header = msg;
+  header.color = image_t{};
+  header.depth = image_t{};
+  first_ = std::move(header);
+  with_camera_ = 0;
+  seen_seq_ = msg.seq;  // the new camera's stream is counted from here
+  return take(msg, std::move(note));
 }
 
 int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
@@ -128,21 +141,28 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
   const int64_t gap = countGap(msg);
   Verdict v = decide(msg);
   v.lost_before = gap;
+  if (v.new_camera) {  // a gap from the replaced camera's frames is not a loss of this stream's
+    lost_before_ -= gap;
+    v.lost_before = 0;
+  }
   return v;
 }
 
 FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   if (std::string why = checkFrame(msg); !why.empty()) return refuse(msg, why);
-  if (!first_) {
-    rgbd_frame_t header = msg;
-    header.color = image_t{};
-    header.depth = image_t{};
-    first_ = std::move(header);
-    return take(msg, "");
+  if (!first_) return pin(msg, "");
+  if (!sameCamera(*first_, msg)) {
+    if (with_camera_ >= limits_.settle_frames)
+      return refuse(msg, "camera changed mid-run, from " + describe(*first_) + " to " + describe(msg) +
+                             "; restart this process to use another camera");
+    ++camera_changes_;
+    const std::string note = "camera " + describe(msg) + " replaces " + describe(*first_) +
+                             ", which came with only " + std::to_string(with_camera_) +
+                             " frame(s); starting again with this one";
+    Verdict v = pin(msg, note);
+    v.new_camera = true;
+    return v;
   }
-  if (!sameCamera(*first_, msg))
-    return refuse(msg, "camera changed mid-run, from " + describe(*first_) + " to " + describe(msg) +
-                           "; restart this process to use another camera");
   const Position next{msg.seq, msg.utime};
   const std::string why = orderProblem(last_, next);
   if (why.empty()) return take(msg, "");

@@ -48,6 +48,7 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
   ctx_.status.received();  // a repeat is not a frame of its own
   ctx_.status.lost(verdict.lost_before);
   if (!verdict.ok) return refuse(verdict.reason);
+  if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. a new camera
   FrameJob job;
   job.seq = msg.seq;
   job.utime = msg.utime;

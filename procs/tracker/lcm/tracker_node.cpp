@@ -130,6 +130,7 @@ TrackerNode::FrameBoxChoice TrackerNode::boxesFor(const rgbd_frame_t& msg) {
 }
 
 void TrackerNode::releaseHeldKeyframes(bool all) {
+  if (!camera_settled_ && !all) return;
   while (!held_.empty()) {
     HeldKeyframe& h = held_.front();
     std::optional<FrameBoxes> late = book_.take(h.frame.seq, h.frame.utime, std::chrono::milliseconds(0));
@@ -210,10 +211,20 @@ void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
   ctx_.status.published();
 }
 
+void TrackerNode::startAgainForNewCamera() {
+  if (!tracker_) return;
+  log::warn("dropping the map of ", tracker_->keyFrameTrajectory().size(), " keyframe(s) (", held_.size(),
+            " not yet sent to the mapper) made with the replaced camera; tracking starts again");
+  held_.clear();
+  tracker_.reset();  // made again from this frame's camera
+}
+
 void TrackerNode::process(const Queued& frame) {
   const rgbd_frame_t& msg = frame.msg;
   const FrameStream::Verdict& verdict = frame.verdict;
   if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. resynchronised
+  if (verdict.new_camera) startAgainForNewCamera();
+  camera_settled_ = verdict.camera_settled;
   if (verdict.lost_before > 0)
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
   // Frames missed just before this one (lost upstream or dropped from our queue), for the frame log. The
@@ -286,7 +297,9 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
   ctx_.status.published();
   if (r.new_keyframe) {
     const cv::Mat mask = r.dynamic_mask.empty() ? cv::Mat::zeros(color.size(), CV_8UC1) : r.dynamic_mask;
-    if (!had_boxes && config_.dynamic.mode != DynamicMode::kNone && !policy_.reproducible) {
+    const bool awaits_boxes =
+        !had_boxes && config_.dynamic.mode != DynamicMode::kNone && !policy_.reproducible;
+    if (awaits_boxes || !camera_settled_) {
       held_.push_back({msg, color, depth, *r.new_keyframe, mask, Stopwatch()});  // its boxes may come yet
     } else {
       ctx_.lcm.publish(channels_.keyframe, toKeyFrameMessage(msg, color, depth, *r.new_keyframe, mask));

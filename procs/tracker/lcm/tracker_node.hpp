@@ -85,6 +85,9 @@ class TrackerNode {
   // Answers a frame that cannot be tracked with STATE_SKIPPED and the reason, warns and counts it.
   void skip(const rgbd_frame_t& msg, const std::string& reason);
   void syncStatus();  // the receive thread's counts into the heartbeat (main thread only)
+  // The stream's camera replaced an unsettled one (a forged first frame's): the map built from its frames
+  // is dropped, with the keyframes held back from the mapper, and tracking starts again.
+  void startAgainForNewCamera();
 
   ProcessContext& ctx_;
   TrackerConfig config_;
@@ -114,6 +117,9 @@ class TrackerNode {
     Stopwatch held;
   };
   std::deque<HeldKeyframe> held_;
+  // Keyframes are held back until the stream's camera settles, so a forged first frame's never reach the
+  // mapper (it keeps keyframes by id, and the map started again reuses the ids).
+  bool camera_settled_ = false;
   int64_t late_applied_ = 0;
   int64_t stale_boxes_used_ = 0;  // frames observed with an earlier frame's boxes
   std::unique_ptr<Tracker> tracker_;

@@ -28,11 +28,15 @@ struct FrameStreamLimits {
   int64_t max_seq_gap = 10000;     // frames; a 3 s pause at 30 Hz is 90
   double max_stamp_gap_s = 600.0;  // seconds between consecutive accepted frames
   int resync_frames = 5;           // consecutive, mutually ordered frames that start a new stream
+  // Frames accepted with one camera before it is kept for the run. Until then a frame from another camera
+  // replaces it: one forged frame before the capture's first must not lock every real frame out.
+  int settle_frames = 5;
 };
 
 // One consumer's view of the frame stream. accept() refuses frames that fail checkFrame, whose seq or
 // stamp does not move forward (or jumps beyond the limits), or whose camera differs from the stream's
-// first (a camera change mid-run needs a restart: a map built with one camera is wrong for another). It
+// first once settled (a camera change mid-run needs a restart: a map built with one camera is wrong for
+// another; before it settles, another camera replaces it and the verdict says so). It
 // counts frames lost upstream from gaps in seq, so every frame capture published after the first one
 // received is either handled, refused with a reason, or counted as lost. A capture that restarts (seq and
 // stamps from the beginning) is followed once resync_frames of its frames arrived in order.
@@ -46,6 +50,11 @@ class FrameStream {
     // late, as the frame or the answer may have been lost. Not refused and not used twice: the consumer
     // repeats its answer if it has given it, or lets the pending one go out.
     bool repeat = false;
+    // This frame's camera replaced an unsettled one: whatever was built from the earlier frames (a map)
+    // belongs to another camera, likely a forged frame's, and is to be dropped.
+    bool new_camera = false;
+    // The stream's camera has settle_frames accepted frames: what was built from it may be announced.
+    bool camera_settled = false;
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits) {}
   Verdict accept(const rgbd_frame_t& msg);
@@ -55,6 +64,7 @@ class FrameStream {
   int64_t lostBefore() const { return lost_before_; }
   int64_t resyncs() const { return resyncs_; }
   int64_t repeats() const { return repeats_; }
+  int64_t cameraChanges() const { return camera_changes_; }
   // The stream's camera (its first accepted frame's), or nullptr before any.
   const camera_t* camera() const { return first_ ? &first_->camera : nullptr; }
 
@@ -68,6 +78,8 @@ class FrameStream {
   Verdict decide(const rgbd_frame_t& msg);
   Verdict refuse(const rgbd_frame_t& msg, const std::string& why);
   Verdict take(const rgbd_frame_t& msg, std::string note);
+  // Makes msg's camera the stream's and msg its first frame.
+  Verdict pin(const rgbd_frame_t& msg, std::string note);
   // Frames missing before msg (counted once: a refused frame arrived, so it is refused, not lost).
   int64_t countGap(const rgbd_frame_t& msg);
 
@@ -77,7 +89,8 @@ class FrameStream {
   std::optional<int64_t> seen_seq_;    // the highest plausible seq received, accepted or refused
   Position candidate_;                 // the newest out-of-order frame, which may be a restarted capture's
   int candidate_run_ = 0;
-  int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0, repeats_ = 0;
+  int64_t with_camera_ = 0;  // frames accepted since the camera was pinned
+  int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0, repeats_ = 0, camera_changes_ = 0;
 };
 
 }  // namespace bmp
