@@ -42,6 +42,12 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   if (result.reason.empty() && hasKeyframe(kf.id))
     result.reason = "a keyframe with this id was already mapped";
   if (!result.reason.empty()) return result;
+  const int64_t revisited = revisitOf(kf.T_world_cam);
+  if (revisited < 0 && keyframes_.size() >= static_cast<std::size_t>(settings_.max_keyframes)) {
+    result.reason = "the map holds max_keyframes (" + std::to_string(settings_.max_keyframes) +
+                    ") keyframes; only revisits of them are taken";
+    return result;
+  }
 
   if (!rays_.fits(kf.camera)) rays_ = RayTable(kf.camera);
   Stored stored;
@@ -52,7 +58,6 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   insertIntoOctree(stored);
   result.points = stored.local.size();
   output_stale_ = true;
-  const int64_t revisited = revisitOf(kf.T_world_cam);
   appendToCloud(stored);
   if (revisited >= 0) {
     mergeInto(keyframes_.at(revisited), stored);

@@ -153,6 +153,8 @@ MapperSettings mapperSettingsFromConfig(const Config& section) {
   s.pictures = readPictures(section.section("pictures"));
   read(section, "world_radius_m", s.world_radius_m);
   positive(section, "world_radius_m", s.world_radius_m);
+  read(section, "max_keyframes", s.max_keyframes);
+  positive(section, "max_keyframes", s.max_keyframes);
   // The octree cannot tell apart what is finer than its leaves, and its rays end where the cloud does.
   section.section("grid").check(s.grid.resolution_m >= s.octomap.resolution_m - 1e-9, "resolution_m",
                                 "must not be finer than octomap.resolution_m");

@@ -91,6 +91,11 @@ struct MapperSettings {
   // refused: the 2-D grid spans every keyframe, so one forged pose 1.6 km away would ask for a grid of
   // 64000^2 cells. 200 m (plus 5 m of range) at 5 cm cells bounds the grid to about 8200^2 cells (67 MB).
   double world_radius_m = 200.0;
+  // Keyframes kept on their own (revisits merged into one are not counted). When the map holds this many, a
+  // keyframe that is not a revisit is refused: a stream of forged keyframes with fresh ids cannot grow the
+  // mapper's memory without bound. At the defaults a keyframe holds about 2 MiB (Bonn: 60 keyframes,
+  // 121 MiB more resident), so 4000 is about 8 GiB.
+  int max_keyframes = 4000;
 };
 
 }  // namespace bmp::mapper

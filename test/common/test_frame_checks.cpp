@@ -158,7 +158,7 @@ TEST(FrameStream, AForgedFirstFrameDoesNotPinItsCamera) {
   EXPECT_TRUE(v.ok);
   EXPECT_TRUE(v.new_camera);
   EXPECT_FALSE(v.camera_settled);
-  EXPECT_NE(v.reason.find("which came with only 1 frame(s)"), std::string::npos) << v.reason;
+  EXPECT_NE(v.reason.find("which came with only 1 message(s)"), std::string::npos) << v.reason;
   for (int64_t seq = 1; seq < 20; ++seq) {
     const auto next = s.accept(frame(seq));
     EXPECT_TRUE(next.ok && !next.new_camera) << seq << ": " << next.reason;

@@ -235,5 +235,22 @@ TEST(WorldRadius, KeyframesAndUpdatesBeyondItAreRefused) {
   EXPECT_LT(mapper.grid().cells.size(), 2000u * 2000u);
 }
 
+// Forged keyframes with fresh ids at fresh places would grow memory without bound: once the map holds
+// max_keyframes, only revisits (merged into a kept keyframe) are taken.
+TEST(MaxKeyframes, BeyondItOnlyRevisitsAreTaken) {
+  MapperSettings settings = test::testSettings();
+  settings.max_keyframes = 2;
+  Mapper mapper(settings);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(1, SE3::Identity(), kWall)).ok);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(2, translation(1.0, 0, 0), kWall)).ok);
+  const IntegrateResult third = mapper.integrate(wallKeyframe(3, translation(2.0, 0, 0), kWall));
+  EXPECT_FALSE(third.ok);
+  EXPECT_EQ(third.reason, "the map holds max_keyframes (2) keyframes; only revisits of them are taken");
+  const IntegrateResult revisit = mapper.integrate(wallKeyframe(4, translation(1.01, 0, 0), kWall));
+  EXPECT_TRUE(revisit.ok) << revisit.reason;
+  EXPECT_EQ(mapper.keyframeCount(), 2u);
+  EXPECT_EQ(mapper.mergedCount(), 1u);
+}
+
 }  // namespace
 }  // namespace bmp::mapper

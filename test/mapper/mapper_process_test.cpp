@@ -76,9 +76,16 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
   ASSERT_TRUE(m.child().running()) << m.log();
 
+  // A forged keyframe of another camera before the tracker's first: the real ones replace its camera, and
+  // the map started with it is dropped. Once the real camera settled (3 keyframes), another is refused.
+  keyframe_t forged = test::keyframeMessage(test::wallKeyframe(500, test::translation(0, 0, 1.0), 3.02));
+  forged.camera.fx *= 1.5;
+  m.publish("SLAM_KEYFRAME", forged);
   for (int id = 0; id < 3; ++id)
     m.publish("SLAM_KEYFRAME",
               test::keyframeMessage(test::wallKeyframe(id, test::translation(0.2 * id, 0, 0), 3.02)));
+  forged.id = 501;
+  m.publish("SLAM_KEYFRAME", forged);
   keyframe_t corrupt = test::keyframeMessage(test::wallKeyframe(3, SE3::Identity(), 3.02));
   for (std::size_t i = 40; i < corrupt.depth.data.size(); ++i) corrupt.depth.data[i] = 0x5a;
   m.publish("SLAM_KEYFRAME", corrupt);
@@ -89,17 +96,18 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   poses.T_world_cam = {toMsg(test::translation(0.5, 0, 0)), toMsg(SE3::Identity())};
   m.publish("SLAM_KEYFRAME_POSES", poses);
 
-  // 3 keyframes and the pose message processed; the corrupt keyframe and the unknown id counted as malformed.
+  // 4 keyframes (the replaced one among them) and the pose message processed; the second forged keyframe,
+  // the corrupt one and the unknown id counted as malformed. The map holds the 3 real keyframes.
   ASSERT_TRUE(m.pumpUntil(
       [&] {
-        return m.status && m.status->processed >= 4 && m.status->malformed >= 2 &&
+        return m.status && m.status->processed >= 5 && m.status->malformed >= 3 &&
                m.status->message.find("keyframes 3") != std::string::npos;
       },
       20))
       << m.log();
-  EXPECT_EQ(m.status->received, 5);
-  EXPECT_EQ(m.status->processed, 4);
-  EXPECT_EQ(m.status->malformed, 2);
+  EXPECT_EQ(m.status->received, 7);
+  EXPECT_EQ(m.status->processed, 5);
+  EXPECT_EQ(m.status->malformed, 3);
   EXPECT_NE(m.status->message.find("keyframes 3"), std::string::npos) << m.status->message;
   EXPECT_NE(m.status->message.find("octree nodes"), std::string::npos) << m.status->message;
   ASSERT_TRUE(m.pumpUntil([&] { return m.grid.has_value(); }, 10));
@@ -112,6 +120,11 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
 
   const std::string log = m.log();
   EXPECT_NE(log.find("keyframe 3: depth does not decode"), std::string::npos) << log;
+  EXPECT_NE(
+      log.find("which came with only 1 message(s); starting again with this one; dropping the 1 keyframe(s)"),
+      std::string::npos)
+      << log;
+  EXPECT_NE(log.find("keyframe 501: camera changed mid-run"), std::string::npos) << log;
   EXPECT_NE(log.find("pose update for keyframe 99: unknown keyframe"), std::string::npos) << log;
   EXPECT_NE(log.find("map saved (SIGUSR1)"), std::string::npos) << log;
   EXPECT_NE(log.find("map saved (exit)"), std::string::npos) << log;

@@ -319,7 +319,7 @@ TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
   ASSERT_EQ(written.size(), 10u);  // the real frames only
   EXPECT_NEAR(written.front().stamp, utimeToSeconds(t.frame(0).utime), 1e-6);
   const std::string log = test::readText(t.logPath());
-  EXPECT_NE(log.find("which came with only 1 frame(s); starting again with this one"), std::string::npos)
+  EXPECT_NE(log.find("which came with only 1 message(s); starting again with this one"), std::string::npos)
       << log;
   EXPECT_NE(log.find("dropping the map of 1 keyframe(s) (1 not yet sent to the mapper)"), std::string::npos)
       << log;

@@ -1,7 +1,6 @@
 #include "bmp/lcm/frame_checks.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace bmp {
 
@@ -52,21 +51,6 @@ std::string checkImage(const image_t& img, const camera_t& cam, int8_t pixel_for
   }
 }
 
-bool sameCamera(const rgbd_frame_t& a, const rgbd_frame_t& b) {
-  const camera_t &x = a.camera, &y = b.camera;
-  bool same = x.width == y.width && x.height == y.height && x.fx == y.fx && x.fy == y.fy && x.cx == y.cx &&
-              x.cy == y.cy && a.depth_scale == b.depth_scale;
-  for (int i = 0; i < 5; ++i) same = same && x.distortion[i] == y.distortion[i];
-  return same;
-}
-
-std::string describe(const rgbd_frame_t& f) {
-  std::ostringstream s;
-  s << f.camera.width << "x" << f.camera.height << " fx " << f.camera.fx << " fy " << f.camera.fy << " cx "
-    << f.camera.cx << " cy " << f.camera.cy << " depth scale " << f.depth_scale;
-  return s.str();
-}
-
 }  // namespace
 
 std::string checkFrame(const rgbd_frame_t& msg) {
@@ -101,18 +85,14 @@ FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note
   last_ = {msg.seq, msg.utime};
   candidate_run_ = 0;
   ++accepted_;
-  ++with_camera_;
+  camera_.used();
   Verdict v{true, std::move(note), 0};
-  v.camera_settled = with_camera_ >= limits_.settle_frames;
+  v.camera_settled = camera_.settled();
   return v;
 }
 
 FrameStream::Verdict FrameStream::pin(const rgbd_frame_t& msg, std::string note) {
-  rgbd_frame_t header = msg;
-  header.color = image_t{};
-  header.depth = image_t{};
-  first_ = std::move(header);
-  with_camera_ = 0;
+  camera_.pin(msg.camera, msg.depth_scale);
   seen_seq_ = msg.seq;  // the new camera's stream is counted from here
   return take(msg, std::move(note));
 }
@@ -132,7 +112,7 @@ int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
 
 FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
   if (accepted_ > 0 && msg.seq == last_.seq && msg.utime == last_.utime && checkFrame(msg).empty() &&
-      first_ && sameCamera(*first_, msg)) {
+      camera_.fit(msg.camera, msg.depth_scale) == CameraPin::Fit::kSame) {
     ++repeats_;
     Verdict v{false, "a repeat of frame " + std::to_string(msg.seq) + " (resent by lockstep capture)", 0};
     v.repeat = true;
@@ -150,18 +130,19 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
 
 FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   if (std::string why = checkFrame(msg); !why.empty()) return refuse(msg, why);
-  if (!first_) return pin(msg, "");
-  if (!sameCamera(*first_, msg)) {
-    if (with_camera_ >= limits_.settle_frames)
-      return refuse(msg, "camera changed mid-run, from " + describe(*first_) + " to " + describe(msg) +
-                             "; restart this process to use another camera");
-    ++camera_changes_;
-    const std::string note = "camera " + describe(msg) + " replaces " + describe(*first_) +
-                             ", which came with only " + std::to_string(with_camera_) +
-                             " frame(s); starting again with this one";
-    Verdict v = pin(msg, note);
-    v.new_camera = true;
-    return v;
+  switch (camera_.fit(msg.camera, msg.depth_scale)) {
+    case CameraPin::Fit::kFirst:
+      return pin(msg, "");
+    case CameraPin::Fit::kRefused:
+      return refuse(msg, camera_.refusal(msg.camera, msg.depth_scale));
+    case CameraPin::Fit::kReplaces: {
+      ++camera_changes_;
+      Verdict v = pin(msg, camera_.replacement(msg.camera, msg.depth_scale));
+      v.new_camera = true;
+      return v;
+    }
+    case CameraPin::Fit::kSame:
+      break;
   }
   const Position next{msg.seq, msg.utime};
   const std::string why = orderProblem(last_, next);

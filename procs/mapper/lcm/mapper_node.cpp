@@ -14,7 +14,11 @@ namespace bmp::mapper {
 
 MapperNode::MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
                        std::string out_dir)
-    : ctx_(ctx), process_(std::move(process)), out_dir_(std::move(out_dir)), mapper_(settings) {
+    : ctx_(ctx),
+      process_(std::move(process)),
+      out_dir_(std::move(out_dir)),
+      mapper_(std::in_place, settings),
+      camera_(process_.camera_settle_keyframes) {
   ctx_.lcm.subscribe<keyframe_t>(process_.keyframe_channel,
                                  [this](const keyframe_t& m, const ReceivedInfo&) { onKeyframe(m); });
   ctx_.lcm.subscribe<keyframe_poses_t>(
@@ -47,13 +51,13 @@ void MapperNode::run() {
     }
     ctx_.status.tick();
   }
-  log::info("mapped ", mapper_.keyframeCount(), " keyframes (+", mapper_.mergedCount(),
-            " revisits merged); integration ", mapper_.integrationTimes().summary());
+  log::info("mapped ", mapper_->keyframeCount(), " keyframes (+", mapper_->mergedCount(),
+            " revisits merged); integration ", mapper_->integrationTimes().summary());
 }
 
 void MapperNode::maintainAndPublish(double now) {
-  if (mapper_.maintain(now)) {
-    log::info("octree rebuilt from ", mapper_.keyframeCount(), " keyframes after a pose update");
+  if (mapper_->maintain(now)) {
+    log::info("octree rebuilt from ", mapper_->keyframeCount(), " keyframes after a pose update");
     grid_dirty_ = true;
   }
   publishDue(now);
@@ -70,17 +74,28 @@ void MapperNode::refuse(const std::string& what) {
   log::warn(what);
 }
 
+void MapperNode::startMapWithCamera(const keyframe_t& msg) {
+  if (camera_.camera() != nullptr) {
+    log::warn("keyframe ", msg.id, ": ", camera_.replacement(msg.camera, msg.depth_scale), "; dropping the ",
+              mapper_->keyframeCount(), " keyframe(s) mapped with the replaced camera");
+    const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
+    mapper_.emplace(settings);
+    floor_reported_ = false;
+  }
+  camera_.pin(msg.camera, msg.depth_scale);
+}
+
 void MapperNode::onKeyframe(const keyframe_t& msg) {
   ctx_.status.received();
   status_dirty_ = true;
+  const CameraPin::Fit fit = camera_.fit(msg.camera, msg.depth_scale);
   KeyframeInput kf;
-  std::string why = keyframeFromMessage(msg, kf);
-  IntegrateResult r;
-  if (why.empty()) {
-    r = mapper_.integrate(kf);
-    why = r.reason;
-  }
+  std::string why = fit == CameraPin::Fit::kRefused ? camera_.refusal(msg.camera, msg.depth_scale)
+                                                    : keyframeFromMessage(msg, kf);
+  if (why.empty() && fit != CameraPin::Fit::kSame) startMapWithCamera(msg);
+  if (why.empty()) why = mapper_->integrate(kf).reason;
   if (!why.empty()) return refuse("keyframe " + std::to_string(msg.id) + ": " + why + "; skipped");
+  camera_.used();
   ctx_.status.processed();
   grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
 }
@@ -89,7 +104,7 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
   ctx_.status.received();
   status_dirty_ = true;
   std::vector<std::string> rejected;
-  const PoseUpdateResult r = mapper_.updatePoses(poseUpdatesFromMessage(msg, rejected));
+  const PoseUpdateResult r = mapper_->updatePoses(poseUpdatesFromMessage(msg, rejected));
   rejected.insert(rejected.end(), r.rejected.begin(), r.rejected.end());
   for (const auto& line : rejected) refuse("pose update for " + line + "; skipped");
   if (r.applied > 0) {
@@ -100,29 +115,29 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
 
 void MapperNode::publishDue(double now) {
   const int64_t utime = nowUtime();
-  const bool repeat = mapper_.keyframeCount() > 0 && now - last_grid_s_ >= process_.grid_repeat_s;
+  const bool repeat = mapper_->keyframeCount() > 0 && now - last_grid_s_ >= process_.grid_repeat_s;
   if ((grid_dirty_ && now - last_grid_s_ >= process_.grid_period_s) || repeat) {
     last_grid_s_ = now;
     grid_dirty_ = false;
-    ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_.grid(), utime));
+    ctx_.lcm.publish(process_.grid_channel, toGridMessage(mapper_->grid(), utime));
     reportFloor();
-    ctx_.lcm.publish(process_.octomap_channel, toOctomapMessage(mapper_.occupancy(), utime));
+    ctx_.lcm.publish(process_.octomap_channel, toOctomapMessage(mapper_->occupancy(), utime));
     ctx_.status.published(2);
   }
   if (cloud_dirty_ && now - last_cloud_s_ >= process_.cloud_period_s) {
     last_cloud_s_ = now;
     cloud_dirty_ = false;
     const auto max_points = static_cast<std::size_t>(process_.max_cloud_points);
-    ctx_.lcm.publish(process_.cloud_channel, toCloudMessage(mapper_.viewerCloud(), utime, max_points));
+    ctx_.lcm.publish(process_.cloud_channel, toCloudMessage(mapper_->viewerCloud(), utime, max_points));
     ctx_.status.published();
   }
 }
 
 void MapperNode::reportFloor() {
-  const auto& floor = mapper_.floor();
+  const auto& floor = mapper_->floor();
   if (!floor || floor_reported_) return;  // a fitted floor stays fitted (Mapper::floor)
   floor_reported_ = true;
-  const auto& up = mapper_.settings().grid.up;
+  const auto& up = mapper_->settings().grid.up;
   const double tilt =
       std::acos(std::clamp(floor->normal.dot(Eigen::Vector3d(up[0], up[1], up[2])), -1.0, 1.0));
   log::info("floor fitted: ", floor->height, " m along its normal, ", tilt * 180.0 / M_PI,
@@ -132,23 +147,24 @@ void MapperNode::reportFloor() {
 void MapperNode::save(const std::string& why) {
   try {
     Stopwatch watch;
-    const auto written = writeMapFiles(out_dir_, mapper_);
+    const auto written = writeMapFiles(out_dir_, *mapper_);
     save_dirty_ = false;
-    log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ", mapper_.cloud().size(),
-              " points, ", static_cast<int>(watch.elapsedMs()), " ms");
+    log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ",
+              mapper_->cloud().size(), " points, ", static_cast<int>(watch.elapsedMs()), " ms");
   } catch (const FileWriteError& e) {
     log::error("map not saved (", why, "): ", e.what());
   }
 }
 
 std::string MapperNode::statusLine() const {
-  const TimingStats& t = mapper_.integrationTimes();
+  const TimingStats& t = mapper_->integrationTimes();
   char line[256];
   std::snprintf(
       line, sizeof(line),
       "keyframes %zu (+%zu merged), points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
-      mapper_.keyframeCount(), mapper_.mergedCount(), mapper_.pointCount(), mapper_.occupancy().nodeCount(),
-      static_cast<double>(bmp::residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
+      mapper_->keyframeCount(), mapper_->mergedCount(), mapper_->pointCount(),
+      mapper_->occupancy().nodeCount(), static_cast<double>(bmp::residentBytes()) / (1 << 20),
+      t.empty() ? 0.0 : t.median());
   return last_warning_.empty() ? line : std::string(line) + "; last warning: " + last_warning_;
 }
 

@@ -1,12 +1,14 @@
 #pragma once
 // bmp-mapper's LCM side: keyframes and pose updates in, the library's Mapper called on each, the grid, the
 // octree and a viewer cloud out at their rates, map files on SIGUSR1, at an interval and at exit.
+#include <optional>
 #include <string>
 
 #include <bmp/keyframe_poses_t.hpp>
 #include <bmp/keyframe_t.hpp>
 
 #include "bmp/common/timing.hpp"
+#include "bmp/lcm/camera_pin.hpp"
 #include "bmp/lcm/process.hpp"
 #include "mapper/lcm/process_settings.hpp"
 #include "mapper/lcm/save_signal.hpp"
@@ -28,6 +30,9 @@ class MapperNode {
  private:
   void onKeyframe(const keyframe_t& msg);
   void onPoses(const keyframe_poses_t& msg);
+  // The keyframe's camera becomes the map's: the first, or one replacing an unsettled camera (the map
+  // made with that one is dropped). Another camera after it settled is refused before decoding.
+  void startMapWithCamera(const keyframe_t& msg);
   void publishDue(double now_s);
   // The loop's work besides messages: octree upkeep, publishing, saving.
   void maintainAndPublish(double now_s);
@@ -38,7 +43,8 @@ class MapperNode {
   ProcessContext& ctx_;
   MapperProcessSettings process_;
   std::string out_dir_;
-  Mapper mapper_;
+  std::optional<Mapper> mapper_;  // made again when another camera replaces an unsettled one
+  CameraPin camera_;
   SaveSignal save_signal_;
   Stopwatch clock_;
   double last_grid_s_ = -1e300, last_cloud_s_ = -1e300, last_save_s_ = 0, last_status_s_ = -1e300;

@@ -16,6 +16,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   s.cloud_period_s = c.get<double>("cloud_period_s", s.cloud_period_s);
   s.save_period_s = c.get<double>("save_period_s", s.save_period_s);
   s.max_cloud_points = c.get<int>("max_cloud_points", s.max_cloud_points);
+  s.camera_settle_keyframes = c.get<int>("camera_settle_keyframes", s.camera_settle_keyframes);
   for (const char* key :
        {"keyframe_channel", "keyframe_poses_channel", "octomap_channel", "grid_channel", "cloud_channel"})
     c.check(!c.get<std::string>(key, "x").empty(), key, "must not be empty");
@@ -26,6 +27,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   c.check(std::isfinite(s.save_period_s) && s.save_period_s >= 0, "save_period_s", "must not be negative");
   c.check(s.max_cloud_points >= 1000 && s.max_cloud_points <= 250000, "max_cloud_points",
           "must be in 1000..250000 (a MAP_CLOUD message must stay under 4 MiB)");
+  c.check(s.camera_settle_keyframes >= 1, "camera_settle_keyframes", "must be at least 1");
   return s;
 }
 

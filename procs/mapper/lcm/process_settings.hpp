@@ -19,6 +19,10 @@ struct MapperProcessSettings {
   double cloud_period_s = 2.0;    // MAP_CLOUD, when the map changed
   double save_period_s = 60.0;    // map files; 0: only on exit and SIGUSR1
   int max_cloud_points = 200000;  // MAP_CLOUD is thinned to this many points (LCM messages stay < 4 MiB)
+  // Keyframes integrated with one camera before it is kept for the run; until then a keyframe of another
+  // camera replaces it and the map starts again (a forged keyframe before the tracker's first must not lock
+  // the real camera out). Once kept, another camera's keyframes are refused before they are decoded.
+  int camera_settle_keyframes = 3;
 };
 
 MapperProcessSettings processSettingsFromConfig(const Config& section);

@@ -9,6 +9,8 @@
 
 #include <bmp/rgbd_frame_t.hpp>
 
+#include "bmp/lcm/camera_pin.hpp"
+
 namespace bmp {
 
 // The largest image side we accept: larger is another publisher's mistake, not a camera we support.
@@ -56,7 +58,7 @@ class FrameStream {
     // The stream's camera has settle_frames accepted frames: what was built from it may be announced.
     bool camera_settled = false;
   };
-  explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits) {}
+  explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits), camera_(limits.settle_frames) {}
   Verdict accept(const rgbd_frame_t& msg);
 
   int64_t accepted() const { return accepted_; }
@@ -66,7 +68,7 @@ class FrameStream {
   int64_t repeats() const { return repeats_; }
   int64_t cameraChanges() const { return camera_changes_; }
   // The stream's camera (its first accepted frame's), or nullptr before any.
-  const camera_t* camera() const { return first_ ? &first_->camera : nullptr; }
+  const camera_t* camera() const { return camera_.camera(); }
 
  private:
   struct Position {
@@ -84,12 +86,11 @@ class FrameStream {
   int64_t countGap(const rgbd_frame_t& msg);
 
   FrameStreamLimits limits_;
-  std::optional<rgbd_frame_t> first_;  // headers only: images cleared
-  Position last_;                      // the last accepted frame
-  std::optional<int64_t> seen_seq_;    // the highest plausible seq received, accepted or refused
-  Position candidate_;                 // the newest out-of-order frame, which may be a restarted capture's
+  CameraPin camera_;
+  Position last_;                    // the last accepted frame
+  std::optional<int64_t> seen_seq_;  // the highest plausible seq received, accepted or refused
+  Position candidate_;               // the newest out-of-order frame, which may be a restarted capture's
   int candidate_run_ = 0;
-  int64_t with_camera_ = 0;  // frames accepted since the camera was pinned
   int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0, repeats_ = 0, camera_changes_ = 0;
 };
 
