@@ -147,6 +147,31 @@ TEST(FrameStream, ACameraChangeMidRunIsRefusedClearly) {
   EXPECT_EQ(s.cameraChanges(), 0);
 }
 
+// The rule both the frame stream and the mapper follow: the camera settles after its count of messages;
+// before, another replaces it (and starts its count again); after, another is refused.
+TEST(CameraPin, AnotherCameraReplacesItUntilItSettlesAndIsRefusedAfter) {
+  const camera_t real = frame(0).camera, forged = frame(0, 10, 6).camera;
+  CameraPin pin(2);
+  EXPECT_EQ(pin.camera(), nullptr);
+  EXPECT_EQ(pin.fit(forged, 1000.0), CameraPin::Fit::kFirst);
+  pin.pin(forged, 1000.0);
+  pin.used();
+  EXPECT_EQ(pin.fit(forged, 1000.0), CameraPin::Fit::kSame);
+  EXPECT_EQ(pin.fit(forged, 5000.0), CameraPin::Fit::kReplaces);  // the depth scale is part of the camera
+  EXPECT_EQ(pin.fit(real, 1000.0), CameraPin::Fit::kReplaces);
+  EXPECT_EQ(pin.replacement(real, 1000.0),
+            "camera 8x6 fx 5 fy 5 cx 4 cy 3 depth scale 1000 replaces 10x6 fx 5 fy 5 cx 5 cy 3 depth scale "
+            "1000, which came with only 1 message(s); starting again with this one");
+  pin.pin(real, 1000.0);
+  EXPECT_FALSE(pin.settled());
+  pin.used();
+  pin.used();
+  EXPECT_TRUE(pin.settled());
+  EXPECT_EQ(pin.fit(forged, 1000.0), CameraPin::Fit::kRefused);
+  EXPECT_NE(pin.refusal(forged, 1000.0).find("camera changed mid-run, from 8x6"), std::string::npos);
+  EXPECT_EQ(pin.camera()->width, 8);
+}
+
 // One forged frame (another camera, a seq far ahead) before the capture's first must not lock the real
 // camera out: until the first camera settles, another replaces it, and the verdict tells the consumer to
 // drop what it built from the forged frame.
