@@ -52,17 +52,18 @@ std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
   return z;
 }
 
-std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std::vector<ObjectBox>& boxes,
-                                const std::vector<uint8_t>& flag) {
+std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
+                                     const std::vector<ObjectBox>& boxes,
+                                     const std::vector<int8_t>& verdict) {
   std::vector<float> share(boxes.size(), 0.0f);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    int in = 0, set = 0;
-    for (std::size_t k = 0; k < keys.size(); ++k) {
-      if (!inside(boxes[i].box, keys[k].pt)) continue;
-      ++in;
-      set += k < flag.size() && flag[k];
+    int judged = 0, moved = 0;
+    for (std::size_t k = 0; k < keys.size() && k < verdict.size(); ++k) {
+      if (verdict[k] < 0 || !inside(boxes[i].box, keys[k].pt)) continue;
+      ++judged;
+      moved += verdict[k] > 0;
     }
-    share[i] = in > 0 ? static_cast<float>(set) / in : 0.0f;
+    share[i] = judged > 0 ? static_cast<float>(moved) / judged : 0.0f;
   }
   return share;
 }

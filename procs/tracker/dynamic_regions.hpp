@@ -34,13 +34,14 @@ struct RegionOptions {
   // A medium-dynamic box counts as moving when at least this share of its area lies inside one
   // high-dynamic box: an object in a person's hands moves with the person.
   float medium_held_overlap = 0.5f;
-  // ... or when at least this share of its keypoints already have a moving probability over the
-  // threshold (geometric evidence carried by the map points): a chair that is being pushed.
+  // ... or when at least this share of its keypoints judged by the geometric observation in the last frame
+  // moved against the camera motion: a chair that is being pushed (Frame::moved; kGeometric only).
   float medium_moving_keypoints = 0.5f;
 };
 
 // Which boxes count as dynamic (z = d) regions: every high box, and each medium box with evidence it
-// moves. moving_share[i] is the share of box i's keypoints already believed dynamic (empty: none known).
+// moves. moving_share[i] is the share of box i's keypoints seen moving (movedShareInBoxes; empty: none
+// known).
 std::vector<uint8_t> movingBoxes(const std::vector<ObjectBox>& boxes, const RegionOptions& options,
                                  const std::vector<float>& moving_share = {});
 
@@ -48,9 +49,10 @@ std::vector<uint8_t> movingBoxes(const std::vector<ObjectBox>& boxes, const Regi
 std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
                                     const std::vector<ObjectBox>& boxes, const std::vector<uint8_t>& moving);
 
-// Share of keypoints inside each box whose flag is set (for movingBoxes' moving_share).
-std::vector<float> shareInBoxes(const std::vector<cv::KeyPoint>& keys, const std::vector<ObjectBox>& boxes,
-                                const std::vector<uint8_t>& flag);
+// Per box, the share of the keypoints inside it with a verdict (>= 0) whose verdict is 1 (moved); 0 when
+// none inside has one (for movingBoxes' moving_share).
+std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
+                                     const std::vector<ObjectBox>& boxes, const std::vector<int8_t>& verdict);
 
 // Boxes seen age_s before the frame they stand in for (real time: the frame's own answer has not come):
 // each high or medium box grown by growth_px_per_s * age_s on every side, as far as a mover may have gone

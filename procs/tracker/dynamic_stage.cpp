@@ -107,7 +107,9 @@ std::vector<int8_t> DynamicStage::boxObservation(const Features& f, const std::v
 void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const {
   if (!enabled() || !boxes) return;
   std::vector<float> share;
-  if (last && last->features) share = shareInBoxes(last->features->keys, *boxes, last->dynamic);
+  // The keypoints' own evidence, not their posterior: that carries this box's earlier observations, so a
+  // chair once counted as moving would keep itself moving.
+  if (last && last->features) share = movedShareInBoxes(last->features->keys, *boxes, last->moved);
   frame.box_z = boxObservation(*frame.features, *boxes, share);
   if (options_.mode != DynamicMode::kBoxes) return;
   // Boxes only: a keypoint in a moving box is dynamic in this frame, with no memory.
@@ -186,6 +188,7 @@ void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* l
     }
     if (last && last->features && options_.track_radius_px > 0) observeTracks(frame, g, *last, verdict);
     if (options_.cluster_min_moved > 0) observeMovingClusters(frame, g, verdict);
+    frame.moved = std::move(verdict);
   } else if (last && last->features && options_.track_radius_px > 0) {
     // The paper's prior for a keypoint matched to no map point: the posterior of its last-frame keypoint.
     const std::vector<int> track = tracksToLast(frame, g, *last);

@@ -35,7 +35,7 @@ class DynamicStage {
 
   bool enabled() const { return options_.mode != DynamicMode::kNone; }
   // boxes: the detector's for this frame, or null when none came. last: the previous frame (or null),
-  // whose dynamic keypoints are the evidence that a medium box moves.
+  // whose keypoints seen moving (Frame::moved) are the evidence that a medium box moves.
   void observe(Frame& frame, const std::vector<ObjectBox>* boxes, const Frame* last) const;
   void applyPriors(Frame& frame) const;
   // last: the previous frame (or null); its keypoints are tracked to this frame's unmatched ones

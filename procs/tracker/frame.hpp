@@ -123,6 +123,10 @@ class Frame {
   std::vector<float> moving;
   std::vector<uint8_t> dynamic;
   bool isDynamic(std::size_t i) const { return dynamic[i] != 0; }
+  // kGeometric: each keypoint's geometric verdict this frame, -1 none, 0 where it should be, 1 moved against
+  // the camera motion. Evidence from the keypoints alone (no box in it): the next frame's medium boxes count
+  // as moving by it, so a chair's own box cannot keep it "moving" (empty in the other modes).
+  std::vector<int8_t> moved;
   // A keypoint matched to no map point but tracked from the last frame's keypoints (keypoint_tracks.hpp):
   // where its track began, in the world (valid where anchored[i]), so the geometric observation sees how
   // far it has moved since, not only since the last frame.
