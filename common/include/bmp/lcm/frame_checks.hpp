@@ -67,7 +67,7 @@ class FrameStream {
   int64_t resyncs() const { return resyncs_; }
   int64_t repeats() const { return repeats_; }
   int64_t cameraChanges() const { return camera_changes_; }
-  // The stream's camera (its first accepted frame's), or nullptr before any.
+  // The stream's camera (pinned by its first accepted frame, or by the one that replaced it), or nullptr.
   const camera_t* camera() const { return camera_.camera(); }
 
  private:
