@@ -6,6 +6,14 @@ namespace bmp::tracker {
 
 namespace {
 
+// The observation's likelihood under "dynamic" and under "static" (the paper's lambda and omega).
+struct Likelihoods {
+  double dynamic, stat;
+};
+Likelihoods likelihoods(bool observed_dynamic, const MovingProbabilityOptions& o) {
+  return observed_dynamic ? Likelihoods{o.lambda, 1.0 - o.omega} : Likelihoods{1.0 - o.lambda, o.omega};
+}
+
 // Bayes with the observation's likelihoods under "dynamic" and "static".
 double posterior(double prior, double like_dynamic, double like_static) {
   const double p = std::clamp(prior, 0.0, 1.0);
@@ -17,16 +25,14 @@ double posterior(double prior, double like_dynamic, double like_static) {
 }  // namespace
 
 double updateMovingProbability(double prior, bool observed_dynamic, const MovingProbabilityOptions& o) {
-  const double like_dynamic = observed_dynamic ? o.lambda : 1.0 - o.lambda;
-  const double like_static = observed_dynamic ? 1.0 - o.omega : o.omega;
-  return posterior(prior, like_dynamic, like_static);
+  const Likelihoods like = likelihoods(observed_dynamic, o);
+  return posterior(prior, like.dynamic, like.stat);
 }
 
 double withdrawObservation(double posterior_after, bool observed_dynamic, const MovingProbabilityOptions& o) {
-  // The update multiplies the odds by like_dynamic / like_static; the likelihoods swapped divide them by it.
-  const double like_dynamic = observed_dynamic ? o.lambda : 1.0 - o.lambda;
-  const double like_static = observed_dynamic ? 1.0 - o.omega : o.omega;
-  return posterior(posterior_after, like_static, like_dynamic);
+  // The update multiplies the odds by like.dynamic / like.stat; the likelihoods swapped divide them by it.
+  const Likelihoods like = likelihoods(observed_dynamic, o);
+  return posterior(posterior_after, like.stat, like.dynamic);
 }
 
 }  // namespace bmp::tracker
