@@ -81,10 +81,19 @@ std::string keepPrevious(const std::string& path) {
 }  // namespace
 
 TumTrajectoryStream::TumTrajectoryStream(const std::string& path, const std::string& comment)
-    : path_(path), previous_(keepPrevious(path)), out_(path) {
+    : path_(path),
+      previous_(keepPrevious(path)),
+      header_((comment.empty() ? "" : "# " + comment + "\n") + "# timestamp tx ty tz qx qy qz qw\n"),
+      out_(path) {
   if (!out_) throw TrajectoryError(path + ": cannot write trajectory file");
-  if (!comment.empty()) out_ << "# " << comment << "\n";
-  out_ << "# timestamp tx ty tz qx qy qz qw" << std::endl;
+  out_ << header_ << std::flush;
+}
+
+void TumTrajectoryStream::restart() {
+  out_.close();
+  out_.open(path_, std::ios::trunc);
+  if (!out_) throw TrajectoryError(path_ + ": cannot write trajectory file");
+  out_ << header_ << std::flush;
 }
 
 void TumTrajectoryStream::append(const StampedPose& pose) {

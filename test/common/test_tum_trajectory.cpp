@@ -66,6 +66,26 @@ TEST(TumTrajectory, StreamKeepsAnEarlierFileAsPrev) {
   EXPECT_TRUE(readTumTrajectory(path).empty());
 }
 
+// A restart drops the poses written so far (a dropped map's) and leaves the kept previous file alone.
+TEST(TumTrajectory, RestartDropsThePosesSoFarAndKeepsThePreviousFile) {
+  const auto dir = test::scratchDir("tum_stream_restart");
+  const std::string path = (dir / "t.txt").string();
+  writeTumTrajectory(path, {{1.0, SE3::Identity()}});  // an earlier run's
+  TumTrajectoryStream live(path, "live poses");
+  live.append({5.0, SE3::Identity()});
+  live.restart();
+  EXPECT_TRUE(readTumTrajectory(path).empty());
+  live.append({6.0, makeSE3({1.0, 0, 0}, Eigen::Quaterniond::Identity())});
+  const Trajectory now = readTumTrajectory(path);
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].stamp, 6.0);
+  EXPECT_EQ(test::readFirstLine(path), "# live poses");
+  ASSERT_EQ(live.previous(), path + ".prev");
+  const Trajectory earlier = readTumTrajectory(live.previous());
+  ASSERT_EQ(earlier.size(), 1u);
+  EXPECT_EQ(earlier[0].stamp, 1.0);
+}
+
 // The final write leaves no temporary behind and a file others can read.
 TEST(TumTrajectory, FinalWriteLeavesOnlyTheFile) {
   const auto dir = test::scratchDir("tum_final");

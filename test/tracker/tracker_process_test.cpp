@@ -298,7 +298,8 @@ TEST(TrackerProcess, CameraChangeAndStampsOutOfOrderAreRefused) {
 
 // One forged frame of another camera, far ahead in seq, before capture's first: it must not lock the real
 // camera out. The real frames replace its camera, the map started from it is dropped, and none of its
-// keyframes reaches the mapper: every keyframe sent has the real camera, the first with id 0.
+// keyframes reaches the mapper: every keyframe sent has the real camera, the first with id 0, and the live
+// trajectory file holds only the real camera's poses.
 TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
   TrackerUnderTest t("tracker_forged_first_frame", 5);
   ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
@@ -310,6 +311,10 @@ TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
     ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
     EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK)) << i;
   }
+  // The live file, read while the tracker runs (as a planner would), holds no pose of the dropped map.
+  const Trajectory live = readTumTrajectory(t.trajectory());
+  ASSERT_EQ(live.size(), 10u);
+  EXPECT_NEAR(live.front().stamp, utimeToSeconds(t.frame(0).utime), 1e-6);
   EXPECT_EQ(t.child().stop(20.0), 0);
   // Keyframes wait for their boxes (no detector here) until the hold is up or the tracker stops.
   ASSERT_TRUE(t.pumpUntil([&] { return !t.keyframes.empty(); }, 5.0));

@@ -217,6 +217,9 @@ void TrackerNode::startAgainForNewCamera() {
             " not yet sent to the mapper) made with the replaced camera; tracking starts again");
   held_.clear();
   tracker_.reset();  // made again from this frame's camera
+  // The live files hold that map's poses: a planner reading them must not take them for the new camera's.
+  if (live_trajectory_) live_trajectory_->restart();
+  if (live_keyframes_) live_keyframes_->restart();
 }
 
 void TrackerNode::process(const Queued& frame) {

@@ -35,6 +35,9 @@ class TumTrajectoryStream {
  public:
   TumTrajectoryStream(const std::string& path, const std::string& comment);
   void append(const StampedPose& pose);
+  // Drops every pose written so far (the header stays; the previous file kept at the start is not touched):
+  // the poses belonged to a map that was dropped.
+  void restart();
   const std::string& path() const { return path_; }
   // Where the file found at the path went ("" when there was none).
   const std::string& previous() const { return previous_; }
@@ -42,6 +45,7 @@ class TumTrajectoryStream {
  private:
   std::string path_;
   std::string previous_;
+  std::string header_;
   std::ofstream out_;
 };
 
