@@ -13,7 +13,10 @@ std::string cameraFileFor(const std::string& sequence_dir, const std::string& ca
   namespace fs = std::filesystem;
   if (fs::is_regular_file(fs::path(sequence_dir) / "camera.yaml"))
     return (fs::path(sequence_dir) / "camera.yaml").string();
-  std::string name = fs::absolute(sequence_dir).lexically_normal().string();
+  // The folder's own name only: a parent such as ~/bonn_tests/ must not choose the camera of its recordings.
+  fs::path folder = fs::absolute(sequence_dir).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();  // "dir/"
+  std::string name = folder.filename().string();
   std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
   const auto pick = [&](const char* file) { return (fs::path(camera_config_dir) / file).string(); };
   if (name.find("bonn") != std::string::npos) return pick("bonn.yaml");
@@ -30,6 +33,13 @@ SequenceCamera selectCamera(const std::string& sequence_dir, const std::string& 
                             const std::string& camera_config_dir) {
   SequenceCamera out;
   out.file = camera_file.empty() ? cameraFileFor(sequence_dir, camera_config_dir) : camera_file;
+  namespace fs = std::filesystem;
+  if (!camera_file.empty())
+    out.chosen_by = "--camera";
+  else if (fs::is_regular_file(fs::path(sequence_dir) / "camera.yaml"))
+    out.chosen_by = "the folder's camera.yaml";
+  else
+    out.chosen_by = "guessed from the folder's name; pass --camera FILE if another camera recorded it";
   if (out.file.empty())
     throw ConfigError(sequence_dir +
                       ": cannot tell which camera recorded this folder; pass --camera FILE "

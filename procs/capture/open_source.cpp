@@ -30,7 +30,7 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
   // The folder first: a missing folder must be reported as such, not as an unknown camera.
   SequenceIndex index = indexSequence(dir, settings.max_association_difference_s);
   const SequenceCamera selected = selectCamera(dir, settings.camera, settings.cameras_dir);
-  log::info("camera from ", selected.file);
+  log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
   TumSourceOptions options;
   options.selection = settings.selection;
   options.verify = settings.verify;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "bmp/common/config.hpp"
@@ -33,6 +34,22 @@ TEST(CameraSelection, UnknownFolderIsAnErrorNamingIt) {
     EXPECT_NE(std::string(e.what()).find(dir), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("--camera"), std::string::npos) << e.what();
   }
+}
+
+// Only the folder's own name counts: a recording under a parent named after another camera is not taken
+// for that camera's (it silently got the wrong intrinsics), and a trailing slash changes nothing.
+TEST(CameraSelection, AParentFoldersNameDoesNotChooseTheCamera) {
+  const auto parent = test::scratchDir("camera_parent") / "bonn_fr2_tests";
+  const std::string dir = (parent / "myrun").string();
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(cameraFileFor(dir, kCameras), "");
+  EXPECT_THROW(selectCamera(dir, "", kCameras), ConfigError);
+  const std::string named = (parent / "rgbd_dataset_freiburg2_desk").string();
+  std::filesystem::create_directories(named);
+  EXPECT_EQ(cameraFileFor(named + "/", kCameras), kCameras + "/tum_fr2.yaml");
+  const SequenceCamera selected = selectCamera(named, "", kCameras);
+  EXPECT_NE(selected.chosen_by.find("guessed from the folder's name"), std::string::npos)
+      << selected.chosen_by;
 }
 
 }  // namespace

@@ -311,7 +311,7 @@ int runBenchTracker(const bmp::ArgParser& args) {
   // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
   const bmp::capture::SequenceCamera selected =
       bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
-  std::fprintf(stderr, "camera from %s\n", selected.file.c_str());
+  std::fprintf(stderr, "camera from %s (%s)\n", selected.file.c_str(), selected.chosen_by.c_str());
   const TrackerConfig config = loadConfig(args);
   Tracker tracker(selected.intrinsics, config);
   auto last = std::make_shared<TrackResult>();
