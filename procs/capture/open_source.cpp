@@ -31,6 +31,8 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
   SequenceIndex index = indexSequence(dir, settings.max_association_difference_s);
   const SequenceCamera selected = selectCamera(dir, settings.camera, settings.cameras_dir);
   log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
+  if (!index.groundtruth_problem.empty())
+    log::warn(index.groundtruth_problem, "; playing without ground truth");
   TumSourceOptions options;
   options.selection = settings.selection;
   options.verify = settings.verify;

@@ -89,13 +89,23 @@ SequenceIndex indexSequence(const std::string& dir, double max_difference) {
     index.frames.push_back({rgb[m.first].stamp, (root / rgb[m.first].path).string(), depth[m.second].stamp,
                             (root / depth[m.second].path).string()});
   }
-  if (index.frames.empty())
-    throw SequenceError(dir + ": no colour/depth pair within " + std::to_string(max_difference) + " s");
+  if (index.frames.empty()) {
+    std::string why = dir + ": no colour/depth pair within " + std::to_string(max_difference) + " s (" +
+                      std::to_string(rgb.size()) + " colour and " + std::to_string(depth.size()) +
+                      " depth files found";
+    // Paths written relative to another folder leave every file missing: say so, with one of them.
+    if (!index.missing_files.empty())
+      why += "; " + std::to_string(index.missing_files.size()) + " listed files do not exist, such as " +
+             index.missing_files.front();
+    throw SequenceError(why + ")");
+  }
   if (fs::is_regular_file(root / "groundtruth.txt")) {
+    // The ground truth is optional: a bad line in it (a motion-capture dropout written as nan) must not
+    // keep the frames from playing.
     try {
       index.groundtruth = readTumTrajectory((root / "groundtruth.txt").string());
     } catch (const TrajectoryError& e) {
-      throw SequenceError(e.what());
+      index.groundtruth_problem = e.what();
     }
   }
   return index;

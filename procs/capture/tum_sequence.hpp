@@ -42,17 +42,19 @@ struct FramePair {
 
 struct SequenceIndex {
   std::string dir;
-  std::string name;               // folder name
-  std::vector<FramePair> frames;  // associated pairs, by colour time
-  Trajectory groundtruth;         // empty when the folder has no groundtruth.txt
-  std::size_t rgb_entries = 0;    // entries whose file exists
+  std::string name;                 // folder name
+  std::vector<FramePair> frames;    // associated pairs, by colour time
+  Trajectory groundtruth;           // empty when the folder has no groundtruth.txt, or a malformed one
+  std::string groundtruth_problem;  // why a groundtruth.txt there was not read (file and line), else ""
+  std::size_t rgb_entries = 0;      // entries whose file exists
   std::size_t depth_entries = 0;
   // Listed files that do not exist; left out before association, so their neighbours can still pair.
   std::vector<std::string> missing_files;
 };
 
 // Files listed but absent are left out and reported in missing_files (not an error: real datasets have them).
-// Throws SequenceError for a missing folder, a missing or malformed list, or no associated pair.
+// Throws SequenceError for a missing folder, a missing or malformed list, or no associated pair. A malformed
+// groundtruth.txt is not an error: it is left out, with the reason in groundtruth_problem.
 SequenceIndex indexSequence(const std::string& dir, double max_difference = 0.02);
 
 }  // namespace bmp::capture

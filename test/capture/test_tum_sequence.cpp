@@ -199,6 +199,35 @@ TEST_F(DamagedFolder, SelectionStartEndEvery) {
   EXPECT_EQ(indices, (std::vector<int64_t>{1, 3}));
 }
 
+// The ground truth is optional: one bad line in it (a motion-capture dropout written as nan) used to stop
+// the whole folder from playing. The frames play, and the reason names the file and line.
+TEST_F(DamagedFolder, AMalformedGroundTruthIsLeftOutNotFatal) {
+  std::ofstream(dir_ / "groundtruth.txt") << "# timestamp tx ty tz qx qy qz qw\n"
+                                          << "1548339822.0 0 0 0 0 0 0 1\n"
+                                          << "1548339822.1 nan nan nan nan nan nan nan\n";
+  const SequenceIndex index = indexSequence(dir_.string());
+  EXPECT_EQ(index.frames.size(), 5u);
+  EXPECT_TRUE(index.groundtruth.empty());
+  EXPECT_NE(index.groundtruth_problem.find("groundtruth.txt:3"), std::string::npos)
+      << index.groundtruth_problem;
+}
+
+// Lists whose paths were written relative to another folder leave every file missing; the error says so
+// and shows one, instead of only "no colour/depth pair".
+TEST_F(DamagedFolder, ListsOfFilesThatAreNotThereSaySo) {
+  std::ofstream(dir_ / "depth.txt") << "1548339822.0 images/depth/1.png\n1548339822.1 images/depth/2.png\n";
+  try {
+    indexSequence(dir_.string());
+    FAIL() << "expected SequenceError";
+  } catch (const SequenceError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("0 depth files found"), std::string::npos) << what;
+    EXPECT_NE(what.find("2 listed files do not exist, such as " + (dir_ / "images/depth/1.png").string()),
+              std::string::npos)
+        << what;
+  }
+}
+
 TEST(Pacer, RealtimeFollowsStampsAndFastDoesNotWait) {
   Pacer realtime(RateMode::kRealtime, 2.0);
   const auto t0 = std::chrono::steady_clock::now();

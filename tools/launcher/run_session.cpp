@@ -20,6 +20,7 @@
 #include "bmp/lcm/process.hpp"
 #include "launcher/launch_plan.hpp"
 #include "launcher/output_relay.hpp"
+#include "launcher/run_folder.hpp"
 #include "launcher/run_monitor.hpp"
 
 namespace bmp::launcher {
@@ -83,6 +84,8 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
 fs::path prepareRunFolder(RunRequest& request, const RunSettings& settings, bool link_latest) {
   const fs::path logs = fs::path(request.out_dir) / "logs";
   fs::create_directories(logs);
+  for (const std::string& name : setAsideEarlierResults(request.out_dir))
+    log::info("an earlier run's ", name, " in this folder is kept as ", name, ".prev");
   if (link_latest) {
     const fs::path latest = fs::path(settings.output_root) / "latest";
     std::error_code ignored;

@@ -1,8 +1,10 @@
 #include "tracker_offline/offline_runner.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -45,16 +47,26 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
 FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth, bool load_masks) {
   auto index = std::make_shared<capture::SequenceIndex>(capture::indexSequence(dir));
   if (groundtruth) *groundtruth = index->groundtruth;
+  for (const auto& path : index->missing_files)
+    std::fprintf(stderr, "warning: %s: listed but does not exist; skipped\n", path.c_str());
+  if (!index->groundtruth_problem.empty())
+    std::fprintf(stderr, "warning: %s; no ground truth\n", index->groundtruth_problem.c_str());
   auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
   return [index, position, load_masks]() -> std::optional<OfflineFrame> {
     while (*position < index->frames.size()) {
       const auto& pair = index->frames[(*position)++];
-      if (!std::filesystem::exists(pair.rgb_path) || !std::filesystem::exists(pair.depth_path)) continue;
       OfflineFrame f;
       f.stamp = pair.rgb_stamp;
       f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
       f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
-      if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1) continue;
+      if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1) {
+        // Named, so a benchmark's frame count can be matched with the files behind it.
+        const std::string why = f.image.empty()   ? pair.rgb_path + ": cannot be read as an image"
+                                : f.depth.empty() ? pair.depth_path + ": cannot be read as an image"
+                                                  : pair.depth_path + ": not 16-bit single-channel depth";
+        std::fprintf(stderr, "warning: frame %.6f skipped: %s\n", pair.rgb_stamp, why.c_str());
+        continue;
+      }
       if (load_masks) {
         const auto mask =
             std::filesystem::path(index->dir) / "mask" / std::filesystem::path(pair.rgb_path).filename();
