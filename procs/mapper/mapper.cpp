@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_set>
 
 #include "mapper/keyframe_cloud.hpp"
 #include "mapper/voxel_filter.hpp"
@@ -20,6 +22,14 @@ std::vector<Eigen::Vector3f> positions(const PointList& points) {
   out.reserve(points.size());
   for (const auto& p : points) out.push_back(p.position());
   return out;
+}
+
+// The voxel of p at `leaf` metres as one key (21 bits per axis: +-52 km at 5 cm).
+uint64_t voxelKey(const Eigen::Vector3f& p, float leaf) {
+  const auto axis = [leaf](float v) {
+    return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v / leaf)) + (int64_t{1} << 20)) & 0x1FFFFFu;
+  };
+  return axis(p.x()) | axis(p.y()) << 21 | axis(p.z()) << 42;
 }
 
 ColoredPoint transformed(const SE3& T, const ColoredPoint& p) {
@@ -118,15 +128,32 @@ void Mapper::mergeInto(Stored& into, const Stored& revisit) const {
   PointList local = into.local;
   for (const auto& p : revisit.local) local.push_back(transformed(T_into_revisit, p));
   into.local = voxelFilter(local, settings_.cloud.keyframe_voxel_m);
+  // Its rays to where the keyframe's own rays end add nothing a rebuild needs (the same rays, within the
+  // merge distance: a neighbouring voxel counts, as the same surface seen from up to 5 cm away may fall into
+  // it); those to new endpoints are what clears a ghost, so they are kept as a scan of their own.
+  const auto leaf = static_cast<float>(settings_.octomap.resolution_m);
+  std::unordered_set<uint64_t> own;
+  own.reserve(27 * into.octree_local.size());
+  for (const auto& p : into.octree_local)
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) own.insert(voxelKey(p + leaf * Eigen::Vector3f(dx, dy, dz), leaf));
   const Eigen::Isometry3f T = T_into_revisit.cast<float>();
-  PointList rays;
-  rays.reserve(into.octree_local.size() + revisit.octree_local.size());
-  for (const auto& p : into.octree_local) rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
+  Scan scan{T_into_revisit.translation().cast<float>(), {}};
   for (const auto& p : revisit.octree_local) {
     const Eigen::Vector3f q = T * p;
-    rays.push_back(ColoredPoint{q.x(), q.y(), q.z(), 0, 0, 0});
+    if (own.count(voxelKey(q, leaf)) == 0) scan.points.push_back(q);
   }
+  if (!scan.points.empty()) into.revisits.push_back(std::move(scan));
+  if (into.revisits.size() <= static_cast<std::size_t>(settings_.merge.max_scans)) return;
+  // The oldest kept scan's endpoints join the keyframe's own: its evidence against a ghost is old by now.
+  PointList rays;
+  rays.reserve(into.octree_local.size() + into.revisits.front().points.size());
+  for (const auto& p : into.octree_local) rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
+  for (const auto& p : into.revisits.front().points)
+    rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
   into.octree_local = positions(voxelFilter(rays, settings_.octomap.resolution_m));
+  into.revisits.erase(into.revisits.begin());
 }
 
 int64_t Mapper::revisitOf(const SE3& T) const {
@@ -162,11 +189,15 @@ void Mapper::rebuildOctree() {
 }
 
 void Mapper::insertIntoOctree(Stored& kf) {
-  std::vector<Eigen::Vector3f> world;
-  world.reserve(kf.octree_local.size());
   const Eigen::Isometry3f T = kf.T_world_cam.cast<float>();
-  for (const auto& p : kf.octree_local) world.push_back(T * p);
-  octree_.insertScan(world, kf.T_world_cam.translation());
+  const auto cast = [&](const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& points) {
+    std::vector<Eigen::Vector3f> world;
+    world.reserve(points.size());
+    for (const auto& p : points) world.push_back(T * p);
+    octree_.insertScan(world, (T * origin).cast<double>());
+  };
+  cast(Eigen::Vector3f::Zero(), kf.octree_local);
+  for (const Scan& s : kf.revisits) cast(s.origin, s.points);  // after the keyframe's own, as they came
   kf.T_world_cam_in_octree = kf.T_world_cam;
 }
 

@@ -83,11 +83,18 @@ class Mapper {
   bool octreeStale() const { return octree_stale_; }
 
  private:
+  // A revisit's rays, in the stored keyframe's camera frame: where it was, and the endpoints it found where
+  // the keyframe's own rays did not end (space a person hid then, seen now).
+  struct Scan {
+    Eigen::Vector3f origin = Eigen::Vector3f::Zero();
+    std::vector<Eigen::Vector3f> points;
+  };
   struct Stored {
     SE3 T_world_cam = SE3::Identity();            // the newest pose
     SE3 T_world_cam_in_octree = SE3::Identity();  // the pose its rays were cast from
     PointList local;                              // camera frame, keyframe_voxel_m
     std::vector<Eigen::Vector3f> octree_local;    // camera frame, down-sampled to the octree's resolution
+    std::vector<Scan> revisits;                   // the newest merged revisits' rays, oldest first
   };
   void appendToCloud(const Stored& kf);
   void insertIntoOctree(Stored& kf);
@@ -96,7 +103,8 @@ class Mapper {
   bool movedBeyondThresholds(const Stored& kf) const;
   // Why a finite pose is outside the mapped world (settings_.world_radius_m), or "".
   std::string checkPlace(const SE3& T_world_cam) const;
-  // Folds a revisit's clouds into a stored keyframe's (its camera frame), voxel-filtered again.
+  // Folds a revisit's cloud into a stored keyframe's (its camera frame), voxel-filtered again, and keeps its
+  // rays as a scan of their own (up to merge.max_scans; older ones folded into the keyframe's own).
   void mergeInto(Stored& into, const Stored& revisit) const;
   // The id of a stored keyframe whose pose is within the merge thresholds of T, or -1.
   int64_t revisitOf(const SE3& T_world_cam) const;

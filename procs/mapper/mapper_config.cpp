@@ -68,9 +68,11 @@ MergeSettings readMerge(const Config& c) {
   MergeSettings s;
   read(c, "max_translation_m", s.max_translation_m);
   read(c, "max_rotation_deg", s.max_rotation_deg);
+  read(c, "max_scans", s.max_scans);
   c.check(std::isfinite(s.max_translation_m) && s.max_translation_m >= 0.0, "max_translation_m",
           "must not be negative");
   c.check(s.max_rotation_deg >= 0.0 && s.max_rotation_deg <= 180.0, "max_rotation_deg", "must be in 0..180");
+  c.check(s.max_scans >= 0 && s.max_scans <= 64, "max_scans", "must be in 0..64");
   return s;
 }
 

@@ -45,6 +45,11 @@ struct RebuildSettings {
 struct MergeSettings {
   double max_translation_m = 0.05;
   double max_rotation_deg = 5.0;
+  // A stored keyframe keeps its newest revisits' rays as scans of their own, so a rebuild casts them as they
+  // were cast: a point the revisits saw through (a person who left) stays cleared. Folded into one scan, a
+  // cell both hit and passed through counts as hit, and the person came back with every rebuild. Older
+  // revisits' rays are folded into the keyframe's own beyond this many (memory stays bounded).
+  int max_scans = 4;
 };
 
 // The floor the grid stands on. The tracker's world is its first camera's frame (x right, y down, z

@@ -129,7 +129,16 @@ TEST(Revisits, MergedRaysStillClearAGhost) {
   ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall, cv::Rect(70, 50, 20, 20), kNear)).ok);
   for (int id = 1; id <= 6; ++id) ASSERT_TRUE(mapper.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
   EXPECT_EQ(mapper.mergedCount(), 6u);
-  EXPECT_EQ(mapper.occupancy().query({0, 0, kNear + 0.005}), Occupancy::kFree);
+  const Eigen::Vector3d ghost(0, 0, kNear + 0.005);
+  EXPECT_EQ(mapper.occupancy().query(ghost), Occupancy::kFree);
+  // A rebuild (a pose update beyond the thresholds; flush() before files are written) casts each kept
+  // revisit as the scan it was: the ghost stays cleared. Folded into one scan with the keyframe's own rays,
+  // its cell was hit and passed through in that one scan, counted as hit, and the ghost came back.
+  ASSERT_EQ(mapper.updatePoses({{0, translation(0.03, 0, 0)}}).applied, 1);
+  mapper.flush();
+  EXPECT_EQ(mapper.rebuildCount(), 1);
+  EXPECT_EQ(mapper.occupancy().query(ghost + Eigen::Vector3d(0.03, 0, 0)), Occupancy::kFree);
+  EXPECT_EQ(mapper.occupancy().query({0.03, 0, kWall + 0.005}), Occupancy::kOccupied);
 }
 
 TEST(PlaneFrame, AxesFollowTheConfiguredUp) {
