@@ -240,6 +240,13 @@ const std::optional<FloorPlane>& Mapper::floor() {
   return floor_;
 }
 
+OccupancyGrid2D Mapper::grid() {
+  std::vector<Eigen::Vector3d> centres;
+  centres.reserve(keyframes_.size());
+  for (const auto& entry : keyframes_) centres.push_back(entry.second.T_world_cam.translation());
+  return octree_.project(groundedGrid(), centres);
+}
+
 GridSettings Mapper::groundedGrid() {
   return bmp::mapper::groundedGrid(settings_.grid, floor());
 }

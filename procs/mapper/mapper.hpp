@@ -64,7 +64,8 @@ class Mapper {
   // The cloud down-sampled to viewer_voxel_m.
   PointList viewerCloud();
   // The grid on the floor (fitted again when keyframes came or moved since the last fit).
-  OccupancyGrid2D grid() { return octree_.project(groundedGrid()); }
+  // Unknown cells around each kept keyframe's camera are free (grid.camera_free_radius_m).
+  OccupancyGrid2D grid();
   // settings.grid with up and the height band in the world, measured from the floor.
   GridSettings groundedGrid();
   // The fitted floor, or nullopt (none found yet, or floor.mode fixed).

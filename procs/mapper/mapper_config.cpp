@@ -115,6 +115,10 @@ GridSettings readGrid(const Config& c) {
   read(c, "resolution_m", s.resolution_m);
   read(c, "height_min_m", s.height_min_m);
   read(c, "height_max_m", s.height_max_m);
+  read(c, "camera_free_radius_m", s.camera_free_radius_m);
+  c.check(
+      std::isfinite(s.camera_free_radius_m) && s.camera_free_radius_m >= 0.0 && s.camera_free_radius_m <= 2.0,
+      "camera_free_radius_m", "must be in [0, 2] metres");
   const std::vector<double> up = c.get<std::vector<double>>("up", {s.up[0], s.up[1], s.up[2]});
   c.check(up.size() == 3, "up", "must be a list of 3 numbers (x, y, z in the world frame)");
   const double norm = std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);

@@ -73,6 +73,10 @@ struct GridSettings {
   std::array<double, 3> up{0.0, -1.0, 0.0};  // world direction of "up"; normalised when read
   double height_min_m = 0.1;                 // the band above the floor that can block a robot
   double height_max_m = 1.5;
+  // Where the camera was, its carrier stood: the floor around each kept keyframe's camera is free in the
+  // grid where nothing else is known (the camera never sees the column under itself, so a planner refused
+  // to start from the robot's own position). Never over an occupied cell. 0: off.
+  double camera_free_radius_m = 0.2;
   FloorSettings floor;
 };
 

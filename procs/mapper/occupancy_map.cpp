@@ -63,6 +63,25 @@ void rasterise(const BandLeaf& leaf, OccupancyGrid2D& grid) {
   }
 }
 
+// Unknown cells whose centre lies within the leaf's half extent of its centre become free.
+void rasteriseDisc(const BandLeaf& disc, OccupancyGrid2D& grid) {
+  const double r = grid.resolution;
+  const int c0 =
+      std::max(0, static_cast<int>(std::floor((disc.centre.x() - disc.half_extent - grid.origin.x()) / r)));
+  const int r0 =
+      std::max(0, static_cast<int>(std::floor((disc.centre.y() - disc.half_extent - grid.origin.y()) / r)));
+  const int c1 =
+      std::min(grid.width - 1, static_cast<int>((disc.centre.x() + disc.half_extent - grid.origin.x()) / r));
+  const int r1 =
+      std::min(grid.height - 1, static_cast<int>((disc.centre.y() + disc.half_extent - grid.origin.y()) / r));
+  for (int row = r0; row <= r1; ++row)
+    for (int col = c0; col <= c1; ++col) {
+      const Eigen::Vector2d centre = grid.origin + r * Eigen::Vector2d(col + 0.5, row + 0.5);
+      int8_t& cell = grid.cells[static_cast<std::size_t>(row) * grid.width + col];
+      if (cell == kCellUnknown && (centre - disc.centre).norm() <= disc.half_extent) cell = kCellFree;
+    }
+}
+
 }  // namespace
 
 OccupancyMap::OccupancyMap(const OctomapSettings& settings)
@@ -96,12 +115,18 @@ double OccupancyMap::probability(const Eigen::Vector3d& p) const {
   return node == nullptr ? -1.0 : node->getOccupancy();
 }
 
-OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
+OccupancyGrid2D OccupancyMap::project(const GridSettings& s,
+                                      const std::vector<Eigen::Vector3d>& camera_centres) const {
   OccupancyGrid2D grid;
   grid.resolution = s.resolution_m;
   grid.frame = PlaneFrame::fromUp(s.up);
-  const std::vector<BandLeaf> leaves = bandLeaves(*tree_, s, grid.frame);
+  std::vector<BandLeaf> leaves = bandLeaves(*tree_, s, grid.frame);
   if (leaves.empty()) return grid;
+  // A camera's floor disc as a free leaf, rasterised after the octree's: it fills only unknown cells.
+  const std::size_t octree_leaves = leaves.size();
+  if (s.camera_free_radius_m > 0)
+    for (const auto& c : camera_centres)
+      leaves.push_back({grid.frame.planar(c), s.camera_free_radius_m, false});
   Eigen::Vector2d lo = leaves[0].centre, hi = lo;
   for (const auto& l : leaves) {
     const Eigen::Vector2d half = Eigen::Vector2d::Constant(l.half_extent);
@@ -113,7 +138,8 @@ OccupancyGrid2D OccupancyMap::project(const GridSettings& s) const {
   grid.width = std::max(1, static_cast<int>(std::ceil((hi.x() - grid.origin.x()) / s.resolution_m - 1e-6)));
   grid.height = std::max(1, static_cast<int>(std::ceil((hi.y() - grid.origin.y()) / s.resolution_m - 1e-6)));
   grid.cells.assign(static_cast<std::size_t>(grid.width) * grid.height, kCellUnknown);
-  for (const auto& l : leaves) rasterise(l, grid);
+  for (std::size_t i = 0; i < octree_leaves; ++i) rasterise(leaves[i], grid);
+  for (std::size_t i = octree_leaves; i < leaves.size(); ++i) rasteriseDisc(leaves[i], grid);
   return grid;
 }
 

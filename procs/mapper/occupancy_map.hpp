@@ -35,8 +35,10 @@ class OccupancyMap {
   double probability(const Eigen::Vector3d& p_world) const;
 
   // The grid: leaves whose height span meets [height_min, height_max] projected along the plane's up;
-  // a cell is occupied if any such leaf is, free if one is free and none occupied, unknown otherwise.
-  OccupancyGrid2D project(const GridSettings& settings) const;
+  // a cell is occupied if any such leaf is, free if one is free and none occupied, unknown otherwise. Then
+  // unknown cells within camera_free_radius_m of a camera centre (world) become free; the grid spans them.
+  OccupancyGrid2D project(const GridSettings& settings,
+                          const std::vector<Eigen::Vector3d>& camera_centres = {}) const;
 
   // OcTree::writeBinaryData (the octomap_t message's payload) and the whole .bt file (writeBinaryConst):
   // both the maximum-likelihood tree, leaving this one's probabilities untouched.

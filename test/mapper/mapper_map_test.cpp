@@ -171,6 +171,28 @@ TEST(OccupancyGrid, WallInTheBandIsOccupiedTheFloorBeforeItFree) {
   EXPECT_TRUE(mapper.occupancy().project(above).cells.empty());
 }
 
+// The column under a camera is never seen, so a planner refused to start where the robot stands. The floor
+// around each keyframe's camera is free where nothing else is known, and never over an obstacle.
+TEST(OccupancyGrid, TheFloorWhereTheCameraWasIsFree) {
+  MapperSettings settings = test::testSettings();
+  settings.grid.height_max_m = 0.5;  // the band ends 0.5 m below the camera: its rays reach it 1.1 m ahead
+  Mapper mapper(settings);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
+  const OccupancyGrid2D grid = mapper.grid();
+  EXPECT_EQ(gridAt(grid, {0, 0, 0}), kCellFree);
+  EXPECT_EQ(gridAt(grid, {0.15, 0, 0}), kCellFree);
+  EXPECT_EQ(gridAt(grid, {0, 0, 0.5}), kCellUnknown);  // beyond 0.2 m, still unseen
+  EXPECT_EQ(gridAt(grid, {0, 0, 1.5}), kCellFree);
+  EXPECT_EQ(gridAt(grid, {0, 0, kWall + 0.005}), kCellOccupied);
+  // A camera centre at the wall leaves the wall occupied; radius 0 turns the rule off.
+  const GridSettings grounded = mapper.groundedGrid();
+  EXPECT_EQ(gridAt(mapper.occupancy().project(grounded, {{0, 0, kWall}}), {0, 0, kWall + 0.005}),
+            kCellOccupied);
+  GridSettings off = grounded;
+  off.camera_free_radius_m = 0.0;
+  EXPECT_EQ(gridAt(mapper.occupancy().project(off, {{0, 0, 0}}), {0, 0, 0}), kCellUnknown);
+}
+
 TEST(PoseUpdate, MovesTheCloudTheOctreeAndTheGrid) {
   Mapper mapper(test::testSettings());
   ASSERT_TRUE(mapper.integrate(wallKeyframe(7, SE3::Identity(), kWall)).ok);
