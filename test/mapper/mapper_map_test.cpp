@@ -39,6 +39,20 @@ TEST(OccupancyMap, WallOccupiedSpaceBeforeItFreeBehindItUnknown) {
   EXPECT_GT(map.nodeCount(), 100u);
 }
 
+// With the default settings every point the cloud keeps is a hit in the octree: a wall just inside
+// cloud.max_depth_m is occupied at the image's corner too, where its ray is 1.26 times its depth long.
+TEST(OccupancyMap, AKeptPointAtTheImagesCornerIsAHit) {
+  Mapper mapper{MapperSettings{}};
+  const double depth = 4.87;
+  ASSERT_LT(depth, MapperSettings{}.cloud.max_depth_m);
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), depth)).ok);
+  const CameraIntrinsics k = test::smallCamera();
+  const Eigen::Vector3d corner((2.0 - k.cx) / k.fx * depth, (2.0 - k.cy) / k.fy * depth, depth + 0.005);
+  ASSERT_GT(corner.norm(), 6.0);
+  EXPECT_EQ(mapper.occupancy().query(corner), Occupancy::kOccupied);
+  EXPECT_EQ(mapper.occupancy().query({0, 0, depth + 0.005}), Occupancy::kOccupied);
+}
+
 TEST(OccupancyMap, GhostIsClearedWhenTheSpaceBehindItIsSeenAgain) {
   Mapper mapper(test::testSettings());
   // A mover, not masked, stands in front of the wall in the first keyframe only.
