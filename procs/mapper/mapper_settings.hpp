@@ -26,7 +26,7 @@ struct OctomapSettings {
   // Rays longer than this are cut there (free space only, no hit). A point's ray is longer than its depth off
   // the optical axis (1.26 x at a 640x480 image's corner, f 525): cloud.max_depth_m 5 needs 6.3.
   double max_range_m = 6.3;
-  double prob_hit = 0.7;     // OctoMap's sensor model
+  double prob_hit = 0.7;  // OctoMap's sensor model
   double prob_miss = 0.4;
   double clamp_min = 0.1192;
   double clamp_max = 0.971;
