@@ -33,12 +33,17 @@ std::string encodeMapYaml(const OccupancyGrid2D& grid, const std::string& image_
   char numbers[160];
   std::snprintf(numbers, sizeof(numbers), "resolution: %.6f\norigin: [%.6f, %.6f, 0.0]\n", grid.resolution,
                 grid.origin.x(), grid.origin.y());
-  return "# bmp-mapper occupancy grid, ROS map_server convention.\n"
-         "# Its plane's axes in the world frame (x, y, and the up axis the grid is projected along):\n"
-         "#   x_axis " +
-         vec(grid.frame.x_axis) + "\n#   y_axis " + vec(grid.frame.y_axis) + "\n#   up " +
-         vec(grid.frame.up) + "\nimage: " + image_name + "\n" + numbers +
-         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  // The plane's axes as keys a program can read (map_server reads only its own): a pose from SLAM_POSE is
+  // in the world frame, and the grid's floor plane is the fitted one, not the world's.
+  return "# bmp-mapper occupancy grid, ROS map_server convention.\nimage: " + image_name + "\n" + numbers +
+         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+         "# The grid's plane in the world frame (the tracker's first camera): a world point p is at plane\n"
+         "# coordinates (plane_x_axis . p, plane_y_axis . p), which origin and resolution turn into a cell;\n"
+         "# plane_up is the axis the grid is projected along (the fitted floor's normal). The floor may be\n"
+         "# fitted again as the map grows: read these with each grid.\n"
+         "plane_x_axis: " +
+         vec(grid.frame.x_axis) + "\nplane_y_axis: " + vec(grid.frame.y_axis) +
+         "\nplane_up: " + vec(grid.frame.up) + "\n";
 }
 
 }  // namespace bmp::mapper

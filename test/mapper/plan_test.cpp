@@ -12,6 +12,7 @@
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
+#include "bmp/common/config.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "lcm_url.hpp"
 #include "mapper/grid_files.hpp"
@@ -119,6 +120,16 @@ TEST(MapServerReader, ReadsTheMappersGridBack) {
   EXPECT_NEAR(read.origin.y(), 2.5, 1e-9);
   EXPECT_EQ(read.cells, grid.cells);
   EXPECT_THROW(readMapServerMap((dir / "missing.yaml").string()), MapFileError);
+  // The plane's axes are keys, for programs that turn world poses into cells.
+  grid.frame = mapper::PlaneFrame::fromUp({0.0, -0.970, -0.243});
+  const Config yaml = Config::fromString(mapper::encodeMapYaml(grid, "g.pgm"), "g.yaml");
+  const auto axis = [&](const char* key) {
+    const auto v = yaml.get<std::vector<double>>(key, {});
+    return v.size() == 3 ? Eigen::Vector3d(v[0], v[1], v[2]) : Eigen::Vector3d::Zero();
+  };
+  EXPECT_TRUE(axis("plane_x_axis").isApprox(grid.frame.x_axis, 1e-5));
+  EXPECT_TRUE(axis("plane_y_axis").isApprox(grid.frame.y_axis, 1e-5));
+  EXPECT_TRUE(axis("plane_up").isApprox(grid.frame.up, 1e-5));
 }
 
 // bmp-plan on files bmp_mapper wrote from a wall 3 m ahead (up is the camera's -y: the plane is x, z).
