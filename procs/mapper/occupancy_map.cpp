@@ -71,9 +71,11 @@ void rasteriseDisc(const BandLeaf& disc, OccupancyGrid2D& grid) {
   const int r0 =
       std::max(0, static_cast<int>(std::floor((disc.centre.y() - disc.half_extent - grid.origin.y()) / r)));
   const int c1 =
-      std::min(grid.width - 1, static_cast<int>((disc.centre.x() + disc.half_extent - grid.origin.x()) / r));
+      std::min(grid.width - 1,
+               static_cast<int>(std::floor((disc.centre.x() + disc.half_extent - grid.origin.x()) / r)));
   const int r1 =
-      std::min(grid.height - 1, static_cast<int>((disc.centre.y() + disc.half_extent - grid.origin.y()) / r));
+      std::min(grid.height - 1,
+               static_cast<int>(std::floor((disc.centre.y() + disc.half_extent - grid.origin.y()) / r)));
   for (int row = r0; row <= r1; ++row)
     for (int col = c0; col <= c1; ++col) {
       const Eigen::Vector2d centre = grid.origin + r * Eigen::Vector2d(col + 0.5, row + 0.5);
