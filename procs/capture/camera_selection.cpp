@@ -33,10 +33,10 @@ SequenceCamera selectCamera(const std::string& sequence_dir, const std::string& 
                             const std::string& camera_config_dir) {
   SequenceCamera out;
   out.file = camera_file.empty() ? cameraFileFor(sequence_dir, camera_config_dir) : camera_file;
-  namespace fs = std::filesystem;
+  // How, read off the choice: cameraFileFor names the folder's camera.yaml as this path when it took it.
   if (!camera_file.empty())
     out.chosen_by = "--camera";
-  else if (fs::is_regular_file(fs::path(sequence_dir) / "camera.yaml"))
+  else if (out.file == (std::filesystem::path(sequence_dir) / "camera.yaml").string())
     out.chosen_by = "the folder's camera.yaml";
   else
     out.chosen_by = "guessed from the folder's name; pass --camera FILE if another camera recorded it";

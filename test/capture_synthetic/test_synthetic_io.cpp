@@ -281,6 +281,7 @@ TEST(SyntheticTumFolder, PlaysThroughTheTumReader) {
   writeTumFolder(scene, dir);
   const SequenceCamera selected = selectCamera(dir, "", test::sourceDir() + "/config/cameras");
   ASSERT_EQ(selected.file, dir + "/camera.yaml");
+  EXPECT_EQ(selected.chosen_by, "the folder's camera.yaml");
   const CameraIntrinsics& k = selected.intrinsics;
   EXPECT_EQ(k.fx, scene.camera().fx);
   EXPECT_EQ(k.depth_scale, scene.camera().depth_scale);
