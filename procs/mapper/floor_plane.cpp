@@ -96,6 +96,7 @@ std::optional<FloorPlane> fitFloor(const PointList& cloud, const Eigen::Vector3d
 
 GridSettings groundedGrid(const GridSettings& grid, const std::optional<FloorPlane>& floor) {
   GridSettings out = grid;
+  out.axes_from = grid.up;
   double floor_height = grid.floor.height_m;
   if (floor && grid.floor.mode == FloorMode::kFit) {
     out.up = {floor->normal.x(), floor->normal.y(), floor->normal.z()};

@@ -31,7 +31,7 @@ std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper) {
   const OccupancyGrid2D grid = mapper.grid();
   const MapperSettings& s = mapper.settings();
   const GridSettings grounded = mapper.groundedGrid();
-  const PlaneFrame frame = PlaneFrame::fromUp(grounded.up);
+  const PlaneFrame frame = PlaneFrame::fromUp(grounded.up, grounded.axes_from);
   std::vector<std::string> written;
   const auto put = [&](const std::string& name, const std::string& content) {
     const std::string path = (fs::path(dir) / name).string();

@@ -80,6 +80,9 @@ struct GridSettings {
   // to start from the robot's own position). Never over an occupied cell. 0: off.
   double camera_free_radius_m = 0.2;
   FloorSettings floor;
+  // Not configured: the up the grid's axes are chosen by (PlaneFrame). groundedGrid keeps the configured up
+  // here when `up` becomes the fitted floor's normal. Zero: `up` itself.
+  std::array<double, 3> axes_from{0.0, 0.0, 0.0};
 };
 
 // Pictures written beside the map files.

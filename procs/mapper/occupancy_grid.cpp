@@ -4,13 +4,14 @@
 
 namespace bmp::mapper {
 
-PlaneFrame PlaneFrame::fromUp(const std::array<double, 3>& up_in) {
+PlaneFrame PlaneFrame::fromUp(const std::array<double, 3>& up_in, const std::array<double, 3>& axes_from) {
   PlaneFrame f;
   f.up = Eigen::Vector3d(up_in[0], up_in[1], up_in[2]).normalized();
+  const Eigen::Vector3d from(axes_from[0], axes_from[1], axes_from[2]);
   int least = 0;
-  f.up.cwiseAbs().minCoeff(&least);
-  // The first least-aligned axis: world x whenever up is perpendicular to it, so the grid reads like the
-  // world.
+  (from.isZero() ? f.up : from).cwiseAbs().minCoeff(&least);
+  // The first least-aligned axis: world x whenever the configured up is perpendicular to it, so the grid
+  // reads like the world.
   const Eigen::Vector3d axis = Eigen::Vector3d::Unit(least);
   f.x_axis = (axis - axis.dot(f.up) * f.up).normalized();
   f.y_axis = f.up.cross(f.x_axis);

@@ -14,16 +14,19 @@ inline constexpr int8_t kCellUnknown = -1;
 inline constexpr int8_t kCellFree = 0;
 inline constexpr int8_t kCellOccupied = 100;
 
-// The floor plane's axes in the world: `up` is the configured up direction; x_axis is the world axis least
-// aligned with up, made perpendicular to it; y_axis = up x x_axis, so (x_axis, y_axis, up) is right-handed.
-// For up = +z the plane's axes are world x and y; for up = -y (the tracker's first camera) they are world x
-// and world z (forward).
+// The floor plane's axes in the world: `up` is the floor's normal (or the configured up); x_axis is the world
+// axis least aligned with `axes_from` (the configured up), made perpendicular to up; y_axis = up x x_axis, so
+// (x_axis, y_axis, up) is right-handed. For up = +z the plane's axes are world x and y; for up = -y (the
+// tracker's first camera) they are world x and world z (forward). The axis is chosen by the configured up,
+// not the fitted normal: a camera pitched and rolled alike has a normal with two near-equal small components,
+// and a refit that swapped them would turn the grid by 90 degrees under a planner.
 struct PlaneFrame {
   Eigen::Vector3d x_axis = Eigen::Vector3d::UnitX();
   Eigen::Vector3d y_axis = Eigen::Vector3d::UnitY();
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
 
-  static PlaneFrame fromUp(const std::array<double, 3>& up);
+  static PlaneFrame fromUp(const std::array<double, 3>& up) { return fromUp(up, up); }
+  static PlaneFrame fromUp(const std::array<double, 3>& up, const std::array<double, 3>& axes_from);
   Eigen::Vector2d planar(const Eigen::Vector3d& p_world) const {
     return {x_axis.dot(p_world), y_axis.dot(p_world)};
   }

@@ -121,7 +121,7 @@ OccupancyGrid2D OccupancyMap::project(const GridSettings& s,
                                       const std::vector<Eigen::Vector3d>& camera_centres) const {
   OccupancyGrid2D grid;
   grid.resolution = s.resolution_m;
-  grid.frame = PlaneFrame::fromUp(s.up);
+  grid.frame = PlaneFrame::fromUp(s.up, s.axes_from);
   std::vector<BandLeaf> leaves = bandLeaves(*tree_, s, grid.frame);
   if (leaves.empty()) return grid;
   // A camera's floor disc as a free leaf, rasterised after the octree's: it fills only unknown cells.

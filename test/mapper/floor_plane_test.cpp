@@ -50,6 +50,7 @@ TEST(FloorFit, ATiltedWorldGetsItsFloorsNormal) {
   const GridSettings grounded = groundedGrid(grid, floor);
   EXPECT_NEAR(grounded.height_min_m, -1.2 + grid.height_min_m, 0.01);
   EXPECT_NEAR(grounded.up[1], expected.y(), 0.01);
+  EXPECT_EQ(grounded.axes_from, grid.up);  // the grid's axes are chosen by the configured up, not the fit
 }
 
 TEST(FloorFit, NoFloorInViewFallsBackToTheConfiguredOne) {

@@ -167,6 +167,21 @@ TEST(PlaneFrame, AxesFollowTheConfiguredUp) {
   EXPECT_TRUE((tilted.R_world_plane().transpose() * tilted.R_world_plane()).isIdentity(1e-9));
 }
 
+TEST(PlaneFrame, ARefittedFloorDoesNotTurnTheGrid) {
+  // A first camera pitched and rolled alike: the floor's normal has two near-equal small components, and
+  // two refits a degree apart swap which is the smaller. The axes follow the configured up, so the grid's x
+  // stays (near) world x instead of jumping to world z.
+  const std::array<double, 3> configured{0.0, -1.0, 0.0};
+  const PlaneFrame a = PlaneFrame::fromUp({0.170, -0.970, 0.174}, configured);
+  const PlaneFrame b = PlaneFrame::fromUp({0.174, -0.970, 0.170}, configured);
+  EXPECT_GT(a.x_axis.dot(b.x_axis), std::cos(2.0 * M_PI / 180.0));
+  EXPECT_GT(a.x_axis.dot(Eigen::Vector3d::UnitX()), 0.98);
+  // Without the configured up each normal picks its own least component: the axes are 90 degrees apart.
+  EXPECT_LT(std::abs(PlaneFrame::fromUp({0.170, -0.970, 0.174})
+                         .x_axis.dot(PlaneFrame::fromUp({0.174, -0.970, 0.170}).x_axis)),
+            0.1);
+}
+
 TEST(OccupancyGrid, WallInTheBandIsOccupiedTheFloorBeforeItFree) {
   Mapper mapper(test::testSettings());  // up -y, band [-1, 0.5] m around the camera's height
   ASSERT_TRUE(mapper.integrate(wallKeyframe(0, SE3::Identity(), kWall)).ok);
