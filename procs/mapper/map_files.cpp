@@ -6,7 +6,7 @@
 
 #include "bmp/common/atomic_file.hpp"
 #include "mapper/cloud_files.hpp"
-#include "mapper/grid_files.hpp"
+#include "mapper/grid_pair.hpp"
 #include "mapper/map_pictures.hpp"
 
 namespace bmp::mapper {
@@ -41,8 +41,7 @@ std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper) {
   put("map.pcd", encodePcd(cloud));
   put("map.ply", encodePly(cloud));
   put("map.bt", mapper.occupancy().binaryFile());
-  put("occupancy.pgm", encodePgm(grid));
-  put("occupancy.yaml", encodeMapYaml(grid, "occupancy.pgm"));
+  for (auto& path : writeGridPair(dir, grid)) written.push_back(std::move(path));
   put("cloud_top.png", png(renderTopView(cloud, frame, grounded, s.pictures)));
   put("cloud_oblique.png", png(renderObliqueView(cloud, frame, grounded, s.pictures)));
   put("occupancy.png", png(renderGrid(grid, s.pictures.grid_cell_px)));

@@ -8,7 +8,8 @@
 
 namespace bmp::mapper {
 
-// map.pcd, map.ply, map.bt, occupancy.pgm, occupancy.yaml, cloud_top.png, cloud_oblique.png, occupancy.png.
+// map.pcd, map.ply, map.bt, occupancy.N.pgm + occupancy.pgm + occupancy.yaml (grid_pair.hpp), cloud_top.png,
+// cloud_oblique.png, occupancy.png.
 // Creates dir if needed; brings the mapper up to date first (flush). Returns the paths written. Throws
 // FileWriteError (bmp/common/atomic_file.hpp) naming the file that could not be written.
 std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper);

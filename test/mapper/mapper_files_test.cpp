@@ -70,7 +70,7 @@ class MapFiles : public ::testing::Test {
 };
 
 TEST_F(MapFiles, EveryFileIsWrittenAndNoTemporaryIsLeft) {
-  EXPECT_EQ(written.size(), 8u);
+  EXPECT_EQ(written.size(), 9u);
   for (const auto& entry : fs::directory_iterator(dir / "map"))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
   for (const char* png : {"cloud_top.png", "cloud_oblique.png", "occupancy.png"}) {
@@ -144,6 +144,34 @@ TEST_F(MapFiles, GridLoadsAsAMapServerMap) {
   EXPECT_EQ(m.image.rows, grid.height);
   EXPECT_NEAR(m.origin_x, grid.origin.x(), 1e-6);
   EXPECT_NEAR(m.origin_y, grid.origin.y(), 1e-6);
+}
+
+std::string readAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST_F(MapFiles, TheYamlNamesAnImageNoLaterSaveRewrites) {
+  const fs::path map = dir / "map";
+  EXPECT_EQ(YAML::LoadFile((map / "occupancy.yaml").string())["image"].as<std::string>(), "occupancy.1.pgm");
+  const std::string first_yaml = readAll(map / "occupancy.yaml");
+  // The map grows: the next save has another size and origin.
+  ASSERT_TRUE(mapper.integrate(test::wallKeyframe(2, test::translation(1.5, 0, 0), 3.02)).ok);
+  writeMapFiles(map.string(), mapper);
+  // A planner that read the first YAML just before that save still finds the image it names, unchanged.
+  const std::string second_image = readAll(map / "occupancy.2.pgm");
+  EXPECT_NE(readAll(map / "occupancy.1.pgm"), second_image);
+  EXPECT_EQ(readAll(map / "occupancy.pgm"), second_image);
+  EXPECT_EQ(YAML::LoadFile((map / "occupancy.yaml").string())["image"].as<std::string>(), "occupancy.2.pgm");
+  const MapServerMap m = MapServerMap::load(map / "occupancy.yaml");
+  EXPECT_EQ(m.image.cols, mapper.grid().width);
+  EXPECT_EQ(m.image.rows, mapper.grid().height);
+  // Only the last two saves' images are kept.
+  writeMapFiles(map.string(), mapper);
+  EXPECT_FALSE(fs::exists(map / "occupancy.1.pgm"));
+  EXPECT_TRUE(fs::exists(map / "occupancy.2.pgm"));
+  EXPECT_TRUE(fs::exists(map / "occupancy.3.pgm"));
+  EXPECT_NE(first_yaml, readAll(map / "occupancy.yaml"));
 }
 
 }  // namespace
