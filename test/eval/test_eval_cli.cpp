@@ -1,5 +1,6 @@
 // Runs the bmp-eval executable: exit codes, one-line errors, the written outputs.
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +54,29 @@ TEST(evalCli, SelfComparisonWritesAllOutputs) {
   EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_run_1_trajectory.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "plots" / "self_run_1_errors.png"));
   EXPECT_GT(std::filesystem::file_size(dir / "aligned.txt"), 10'000u);
+}
+
+TEST(evalCli, GroundTruthCoveringPartOfTheRunIsWarnedAbout) {
+  const auto dir = bmp::test::scratchDir("eval_cli_coverage");
+  // The ground truth's first half only: the estimate's second half has nothing to be compared with.
+  const std::string full = test::readText(gtPath());
+  std::size_t cut = 0;
+  for (int lines = lineCount(full) / 2; lines > 0; --lines) cut = full.find('\n', cut) + 1;
+  const std::string half = (dir / "half.txt").string();
+  { std::ofstream(half) << full.substr(0, cut); }
+  const CliRun r =
+      runEval(dir, "--gt '" + half + "' --est '" + gtPath() + "' --json '" + (dir / "r.json").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("WARNING: only "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the ATE speaks for that part of the run only"), std::string::npos) << r.out;
+  const std::string json = test::readText((dir / "r.json").string());
+  const std::size_t at = json.find("\"coverage\": ");
+  ASSERT_NE(at, std::string::npos) << json;
+  EXPECT_NEAR(std::stod(json.substr(at + 12)), 0.5, 0.02);
+  // The whole ground truth: no warning.
+  const CliRun whole = runEval(dir, "--gt '" + gtPath() + "' --est '" + gtPath() + "'");
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  EXPECT_EQ(whole.out.find("WARNING"), std::string::npos) << whole.out;
 }
 
 TEST(evalCli, HelpAndBadCommandLine) {

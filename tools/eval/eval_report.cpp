@@ -49,6 +49,10 @@ void statsLines(std::ostringstream& out, const ErrorStats& s, const std::string&
 
 }  // namespace
 
+double ateCoverage(const EvalReport& r) {
+  return r.est_poses == 0 ? 0.0 : static_cast<double>(r.ate.stats.count) / static_cast<double>(r.est_poses);
+}
+
 std::string formatText(const EvalReport& r) {
   std::ostringstream out;
   out << "bmp-eval" << (r.label.empty() ? "" : ": " + r.label) << "\n";
@@ -58,6 +62,13 @@ std::string formatText(const EvalReport& r) {
       << r.ate_options.offset << " s, scale " << r.ate_options.scale << "): " << r.ate.stats.count
       << " pairs\n";
   statsLines(out, r.ate.stats, "m", 6, 100.0);
+  if (ateCoverage(r) < kWarnCoverageBelow)
+    out << "WARNING: only " << r.ate.stats.count << " of the estimate's " << r.est_poses << " poses ("
+        << fixed(100.0 * ateCoverage(r), 1) << " %) have a ground-truth pose within "
+        << r.ate_options.max_difference
+        << " s: the ATE speaks for that part of the run only. Check that the ground truth is this "
+           "recording's "
+           "and covers it (or widen --max-diff for sparse ground truth).\n";
   if (r.body_offset.constant())
     out << "WARNING: the ground truth's orientations differ from the estimate's camera frame by a constant "
         << fixed(r.body_offset.angle_deg, 1) << " deg (spread " << fixed(r.body_offset.spread_deg, 1)
@@ -86,6 +97,7 @@ std::string formatJson(const EvalReport& r) {
   out << "  \"ate\": {\"max_difference_s\": " << jsonNumber(r.ate_options.max_difference)
       << ", \"offset_s\": " << jsonNumber(r.ate_options.offset)
       << ", \"scale\": " << jsonNumber(r.ate_options.scale) << ", \"pairs\": " << r.ate.stats.count
+      << ", \"coverage\": " << jsonNumber(ateCoverage(r))
       << ",\n          \"translation_m\": " << jsonStats(r.ate.stats) << "},\n";
   out << "  \"rpe\": {\"delta\": " << jsonNumber(r.rpe_options.delta) << ", \"delta_unit\": \""
       << deltaUnitName(r.rpe_options.unit) << "\", \"offset_s\": " << jsonNumber(r.rpe_options.offset)

@@ -22,6 +22,12 @@ struct EvalReport {
   BodyOffset body_offset;  // between the estimate's camera frame and the ground truth's orientations
 };
 
+// Below this share of the estimate's poses paired with ground truth, the text report warns that the ATE
+// speaks for part of the run only (ground truth that starts late or stops early, another recording's file).
+inline constexpr double kWarnCoverageBelow = 0.9;
+// The share of the estimate's poses the ATE paired with ground truth (0 without poses).
+double ateCoverage(const EvalReport& report);
+
 std::string formatText(const EvalReport& report);
 // One JSON object; NaN statistics (no RPE pairs) become null.
 std::string formatJson(const EvalReport& report);
