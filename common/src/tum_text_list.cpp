@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 namespace bmp {
 
@@ -50,10 +51,16 @@ bool parseRecord(const std::string& line, const TumTextFormat& format, TumTextRe
 
 }  // namespace
 
-std::vector<TumTextRecord> parseTumTextList(const std::string& text, const std::string& origin,
-                                            const TumTextFormat& format) {
+std::vector<TumTextRecord> parseTumTextList(const std::string& text_in, const std::string& origin,
+                                            const TumTextFormat& format, std::string* cut_last_line) {
+  // Editors on Windows start UTF-8 files with a byte-order mark; it would make the first stamp unreadable.
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  const std::string_view text = std::string_view(text_in).substr(
+      std::string_view(text_in).substr(0, kByteOrderMark.size()) == kByteOrderMark ? kByteOrderMark.size()
+                                                                                   : 0);
+  if (cut_last_line != nullptr) cut_last_line->clear();
   std::vector<TumTextRecord> records;
-  std::istringstream in(text);
+  std::istringstream in{std::string(text)};
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -62,20 +69,28 @@ std::vector<TumTextRecord> parseTumTextList(const std::string& text, const std::
     TumTextRecord record;
     record.line = line_no;
     record.text = line;
-    if (!parseRecord(line, format, record))
-      throw TumTextError(origin + ":" + std::to_string(line_no) + ": expected '" + format.layout +
-                         "', got '" + line + "'");
+    if (!parseRecord(line, format, record)) {
+      const std::string where = origin + ":" + std::to_string(line_no);
+      if (cut_last_line != nullptr && in.eof() && !text.empty() && text.back() != '\n') {
+        *cut_last_line = where + ": the last line, '" + line +
+                         "', has no end of line and is not a whole record (the file was cut off while "
+                         "written); left out";
+        break;
+      }
+      throw TumTextError(where + ": expected '" + format.layout + "', got '" + line + "'");
+    }
     records.push_back(std::move(record));
   }
   return records;
 }
 
-std::vector<TumTextRecord> readTumTextList(const std::string& path, const TumTextFormat& format) {
+std::vector<TumTextRecord> readTumTextList(const std::string& path, const TumTextFormat& format,
+                                           std::string* cut_last_line) {
   std::ifstream in(path);
   if (!in) throw TumTextError(path + ": cannot open " + format.kind);
   std::stringstream text;
   text << in.rdbuf();
-  return parseTumTextList(text.str(), path, format);
+  return parseTumTextList(text.str(), path, format, cut_last_line);
 }
 
 }  // namespace bmp

@@ -33,6 +33,7 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
   log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
   if (!index.groundtruth_problem.empty())
     log::warn(index.groundtruth_problem, "; playing without ground truth");
+  for (const auto& problem : index.list_problems) log::warn(problem);
   TumSourceOptions options;
   options.selection = settings.selection;
   options.verify = settings.verify;

@@ -11,11 +11,26 @@ namespace bmp::capture {
 
 namespace fs = std::filesystem;
 
-std::vector<ListEntry> readListFile(const std::string& path) {
+namespace {
+
+// Seconds since 1970 stay below this until the year 5138; a larger stamp is in micro- or nanoseconds, and
+// would play with every frame interval a million times too long.
+constexpr double kLargestStampInSeconds = 1e11;
+
+}  // namespace
+
+std::vector<ListEntry> readListFile(const std::string& path, std::string* cut_last_line) {
   std::vector<ListEntry> entries;
   try {
-    for (auto& record : readTumTextList(path, {"list file", "timestamp filename", 1, false}))
+    for (auto& record : readTumTextList(path, {"list file", "timestamp filename", 1, false}, cut_last_line)) {
+      if (std::abs(record.stamp) >= kLargestStampInSeconds)
+        throw SequenceError(
+            path + ":" + std::to_string(record.line) + ": the stamp in '" + record.text +
+            "' is not in seconds (micro- or nanoseconds?); TUM lists give seconds, e.g. "
+            "1305031102.175304. For nanoseconds: awk '/^#/ {print; next} {printf \"%.9f %s\\n\", "
+            "$1 / 1e9, $2}' rgb.txt > rgb_s.txt");
       entries.push_back({record.stamp, std::move(record.fields[0])});
+    }
   } catch (const TumTextError& e) {
     throw SequenceError(e.what());
   }
@@ -64,7 +79,10 @@ SequenceIndex indexSequence(const std::string& dir, double max_difference) {
   SequenceIndex index;
   const auto existing = [&](const std::string& list) {
     std::vector<ListEntry> kept;
-    for (auto& e : readListFile((root / list).string())) {
+    std::string cut;
+    auto entries = readListFile((root / list).string(), &cut);
+    if (!cut.empty()) index.list_problems.push_back(cut);
+    for (auto& e : entries) {
       if (fs::is_regular_file(root / e.path)) {
         kept.push_back(std::move(e));
       } else {

@@ -20,8 +20,9 @@ struct ListEntry {
   std::string path;  // relative to the sequence folder, as written in the list
 };
 
-// Parses a TUM list file. Throws SequenceError naming file and line for a malformed line.
-std::vector<ListEntry> readListFile(const std::string& path);
+// Parses a TUM list file. Throws SequenceError naming file and line for a malformed line, and for stamps that
+// are not seconds. A last line cut off while written is left out and described in cut_last_line, if given.
+std::vector<ListEntry> readListFile(const std::string& path, std::string* cut_last_line = nullptr);
 
 struct StampMatch {
   std::size_t first = 0;   // index into the first list
@@ -50,6 +51,8 @@ struct SequenceIndex {
   std::size_t depth_entries = 0;
   // Listed files that do not exist; left out before association, so their neighbours can still pair.
   std::vector<std::string> missing_files;
+  // What was worked around in rgb.txt and depth.txt (a last line cut off while written), file and line.
+  std::vector<std::string> list_problems;
 };
 
 // Files listed but absent are left out and reported in missing_files (not an error: real datasets have them).

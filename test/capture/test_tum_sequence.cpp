@@ -228,6 +228,41 @@ TEST_F(DamagedFolder, ListsOfFilesThatAreNotThereSaySo) {
   }
 }
 
+// A recorder killed while writing leaves half a line at the end of rgb.txt: the frames before it play, and
+// the warning names the file and line. A byte-order mark (a list saved by a Windows editor) is no error.
+TEST_F(DamagedFolder, AListCutOffWhileWrittenPlaysWhatIsWhole) {
+  std::string rgb;
+  {
+    std::ifstream in(dir_ / "rgb.txt");
+    rgb.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::ofstream(dir_ / "rgb.txt") << "\xEF\xBB\xBF" << rgb << "1548339999.3";  // a stamp, no file, no newline
+  const SequenceIndex index = indexSequence(dir_.string());
+  EXPECT_EQ(index.frames.size(), 5u);
+  ASSERT_EQ(index.list_problems.size(), 1u);
+  EXPECT_NE(index.list_problems[0].find("rgb.txt:6: the last line, '1548339999.3', has no end of line"),
+            std::string::npos)
+      << index.list_problems[0];
+  // The same half line inside the file is damage, not a cut-off end: refused, naming the line.
+  std::ofstream(dir_ / "rgb.txt") << "1548339999.3\n" << rgb;
+  EXPECT_THROW(indexSequence(dir_.string()), SequenceError);
+}
+
+// Nanosecond stamps would pair (colour and depth share them) and play with every frame interval 1e9 times too
+// long: refused, saying what the stamps look like and how to convert them.
+TEST_F(DamagedFolder, StampsInNanosecondsAreRefusedWithAHint) {
+  std::ofstream(dir_ / "rgb.txt") << "1548339822100000000 " << fs::relative(rgb_files_[0], dir_).string()
+                                  << "\n";
+  try {
+    indexSequence(dir_.string());
+    FAIL() << "expected SequenceError";
+  } catch (const SequenceError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("rgb.txt:1: the stamp in '1548339822100000000"), std::string::npos) << what;
+    EXPECT_NE(what.find("not in seconds (micro- or nanoseconds?)"), std::string::npos) << what;
+  }
+}
+
 TEST(Pacer, RealtimeFollowsStampsAndFastDoesNotWait) {
   Pacer realtime(RateMode::kRealtime, 2.0);
   const auto t0 = std::chrono::steady_clock::now();

@@ -62,6 +62,30 @@ TEST(TumTextList, MalformedLinesNameFileAndLine) {
   }
 }
 
+TEST(TumTextList, AByteOrderMarkIsNotPartOfTheFirstStamp) {
+  const auto records = parseTumTextList(
+      "\xEF\xBB\xBF"
+      "1.5 rgb/1.png\n",
+      "rgb.txt", kList);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_DOUBLE_EQ(records[0].stamp, 1.5);
+}
+
+TEST(TumTextList, ALastLineCutOffIsLeftOutOnlyWhenAskedAndOnlyAtTheEnd) {
+  const std::string cut_text = "1.0 rgb/1.png\n2.0 rgb/2.png\n3.0 rgb/";
+  EXPECT_THROW(parseTumTextList("1.0 rgb/1.png\n3.0", "rgb.txt", kList), TumTextError);  // not asked
+  std::string cut;
+  auto records = parseTumTextList("1.0 rgb/1.png\n3.0", "rgb.txt", kList, &cut);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(cut.rfind("rgb.txt:2: the last line, '3.0', has no end of line", 0), 0u) << cut;
+  // A whole last line without an end of line is a record like any other.
+  records = parseTumTextList(cut_text, "rgb.txt", kList, &cut);
+  EXPECT_EQ(records.size(), 3u);
+  EXPECT_EQ(cut, "");
+  // A malformed last line that does end with a newline was written whole: still an error.
+  EXPECT_THROW(parseTumTextList("1.0 rgb/1.png\n3.0\n", "rgb.txt", kList, &cut), TumTextError);
+}
+
 TEST(TumTextList, ReadsFilesAndNamesAnUnreadableOne) {
   const auto dir = test::scratchDir("tum_text_list");
   std::ofstream(dir / "depth.txt") << "# depth maps\n1.0 depth/1.png\n2.0 depth/2.png\n";

@@ -51,6 +51,7 @@ FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* gro
     std::fprintf(stderr, "warning: %s: listed but does not exist; skipped\n", path.c_str());
   if (!index->groundtruth_problem.empty())
     std::fprintf(stderr, "warning: %s; no ground truth\n", index->groundtruth_problem.c_str());
+  for (const auto& problem : index->list_problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
   auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
   return [index, position, load_masks]() -> std::optional<OfflineFrame> {
     while (*position < index->frames.size()) {

@@ -37,11 +37,15 @@ struct TumTextRecord {
   double number(std::size_t i) const;
 };
 
-// Every record of the text, in file order. Throws TumTextError "<origin>:<line>: expected '<layout>', got
-// '<line>'" for a line whose stamp is not a number or whose field count (or numbers) is wrong.
+// Every record of the text, in file order; a UTF-8 byte-order mark before the first line is ignored. Throws
+// TumTextError "<origin>:<line>: expected '<layout>', got '<line>'" for a line whose stamp is not a number or
+// whose field count (or numbers) is wrong. With cut_last_line given, a malformed last line that has no end of
+// line (a recorder killed while writing it) is left out instead, and described there ("" when none was).
 std::vector<TumTextRecord> parseTumTextList(const std::string& text, const std::string& origin,
-                                            const TumTextFormat& format);
+                                            const TumTextFormat& format,
+                                            std::string* cut_last_line = nullptr);
 // The same from a file; throws TumTextError "<path>: cannot open <kind>" when it cannot be read.
-std::vector<TumTextRecord> readTumTextList(const std::string& path, const TumTextFormat& format);
+std::vector<TumTextRecord> readTumTextList(const std::string& path, const TumTextFormat& format,
+                                           std::string* cut_last_line = nullptr);
 
 }  // namespace bmp
