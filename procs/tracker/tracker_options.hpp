@@ -40,7 +40,7 @@ struct TrackingOptions {
   bool check_orientation = true;         // rotation histogram consistency in frame-to-frame matches
   int min_matches_motion = 20;           // matches needed before optimising the motion-model pose
   int min_inliers_motion = 10;           // inliers after optimisation for the motion model to count
-  int min_inliers_local_map = 30;        // inliers after local-map tracking for the frame to be OK
+  int min_inliers_local_map = 20;        // inliers after local-map tracking for the frame to be OK
   int min_inliers_after_reloc = 50;      // same, in the frames just after relocalisation
   int max_local_keyframes = 60;          // size cap of the local map
   int temporal_points = 0;               // nearest depth points made temporary in the last frame (0: off)
