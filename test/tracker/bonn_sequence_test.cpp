@@ -3,6 +3,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/config.hpp"
@@ -148,6 +153,42 @@ TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
               result.frames_lost, rmse, result.track_ms.median());
   // ORB-SLAM2 reaches 4.9 cm here (WildGS-SLAM paper, table 3): the bar for a static-world SLAM.
   EXPECT_LT(rmse, 0.049) << "ATE RMSE " << rmse;
+}
+
+// The benchmark's reader skips what the tracker process would refuse, and names it: here a depth image that
+// is not at the colour image's size (it would put every keypoint's depth at the wrong pixel).
+TEST(TrackerBonn, AFolderReaderSkipsDepthOfAnotherSizeAndNamesIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = test::scratchDir("offline_wrong_size");
+  fs::create_directories(dir / "rgb");
+  fs::create_directories(dir / "depth");
+  FrameProvider bonn = tumFolderFrames(test::bonnDir());
+  std::ofstream rgb(dir / "rgb.txt"), depth(dir / "depth.txt");
+  for (int i = 0; i < 3; ++i) {
+    const auto f = bonn();
+    ASSERT_TRUE(f);
+    const std::string name = std::to_string(i) + ".png";
+    cv::imwrite((dir / "rgb" / name).string(), f->image);
+    cv::Mat d = f->depth;
+    if (i == 1) cv::resize(f->depth, d, {320, 240}, 0, 0, cv::INTER_NEAREST);
+    cv::imwrite((dir / "depth" / name).string(), d);
+    rgb << std::fixed << 1000.0 + i * 0.1 << " rgb/" << name << "\n";
+    depth << std::fixed << 1000.0 + i * 0.1 << " depth/" << name << "\n";
+  }
+  rgb.close();
+  depth.close();
+  FrameProvider frames = tumFolderFrames(dir.string());
+  ::testing::internal::CaptureStderr();
+  int played = 0;
+  while (auto f = frames()) {
+    EXPECT_EQ(f->depth.size(), f->image.size());
+    ++played;
+  }
+  const std::string warnings = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(played, 2);
+  EXPECT_NE(warnings.find((dir / "depth" / "1.png").string() + ": not the colour image's size"),
+            std::string::npos)
+      << warnings;
 }
 
 }  // namespace
