@@ -28,7 +28,8 @@ std::vector<ListEntry> readListFile(const std::string& path, std::string* cut_la
             path + ":" + std::to_string(record.line) + ": the stamp in '" + record.text +
             "' is not in seconds (micro- or nanoseconds?); TUM lists give seconds, e.g. "
             "1305031102.175304. For nanoseconds: awk '/^#/ {print; next} {printf \"%.9f %s\\n\", "
-            "$1 / 1e9, $2}' rgb.txt > rgb_s.txt");
+            "$1 / 1e9, $2}' " +
+            fs::path(path).filename().string() + " > seconds.txt");
       entries.push_back({record.stamp, std::move(record.fields[0])});
     }
   } catch (const TumTextError& e) {
