@@ -11,10 +11,10 @@ using namespace bmp;
 void addOptions(ArgParser& args) {
   args.addOption("out", "DIR", "folder for the map files (created if missing)", "map");
   args.addEpilog(
-      "Writes DIR/map.pcd, map.ply, map.bt, occupancy.yaml + occupancy.N.pgm (ROS map_server; the YAML "
-      "names\n"
-      "the save's numbered image), occupancy.pgm (the latest image), cloud_top.png, cloud_oblique.png and\n"
-      "occupancy.png on exit (SIGINT/SIGTERM), on SIGUSR1 and every process.save_period_s seconds. Example:\n"
+      "Writes DIR/map.pcd, map.ply, map.bt, occupancy.yaml + occupancy.N.pgm (ROS map_server; the YAML\n"
+      "names the save's numbered image), occupancy.pgm (the latest image), cloud_top.png,\n"
+      "cloud_oblique.png and occupancy.png on exit (SIGINT/SIGTERM), on SIGUSR1 and every\n"
+      "process.save_period_s seconds. Example:\n"
       "  bmp-mapper --out out/latest/map &  kill -USR1 $!   # save now\n");
 }
 

@@ -67,8 +67,7 @@ std::string formatText(const EvalReport& r) {
         << fixed(100.0 * ateCoverage(r), 1) << " %) have a ground-truth pose within "
         << r.ate_options.max_difference
         << " s: the ATE speaks for that part of the run only. Check that the ground truth is this "
-           "recording's "
-           "and covers it (or widen --max-diff for sparse ground truth).\n";
+           "recording's and covers it (or widen --max-diff for sparse ground truth).\n";
   if (r.body_offset.constant())
     out << "WARNING: the ground truth's orientations differ from the estimate's camera frame by a constant "
         << fixed(r.body_offset.angle_deg, 1) << " deg (spread " << fixed(r.body_offset.spread_deg, 1)

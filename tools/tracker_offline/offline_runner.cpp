@@ -60,15 +60,15 @@ FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* gro
       f.stamp = pair.rgb_stamp;
       f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
       f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
-      // The tracker process's rule (tracker_node.cpp): depth is 16-bit at the colour image's size.
-      if (f.image.empty() || f.depth.empty() || f.depth.type() != CV_16UC1 ||
-          f.depth.size() != f.image.size()) {
-        // Named, so a benchmark's frame count can be matched with the files behind it.
-        const std::string why = f.image.empty()   ? pair.rgb_path + ": cannot be read as an image"
-                                : f.depth.empty() ? pair.depth_path + ": cannot be read as an image"
-                                : f.depth.type() != CV_16UC1
-                                    ? pair.depth_path + ": not 16-bit single-channel depth"
-                                    : pair.depth_path + ": not the colour image's size";
+      // The tracker process's rule (tracker_node.cpp): depth is 16-bit at the colour image's size. Named, so
+      // a benchmark's frame count can be matched with the files behind it.
+      const std::string why =
+          f.image.empty()                    ? pair.rgb_path + ": cannot be read as an image"
+          : f.depth.empty()                  ? pair.depth_path + ": cannot be read as an image"
+          : f.depth.type() != CV_16UC1       ? pair.depth_path + ": not 16-bit single-channel depth"
+          : f.depth.size() != f.image.size() ? pair.depth_path + ": not the colour image's size"
+                                             : std::string();
+      if (!why.empty()) {
         std::fprintf(stderr, "warning: frame %.6f skipped: %s\n", pair.rgb_stamp, why.c_str());
         continue;
       }
