@@ -31,7 +31,7 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   OfflineOptions options;
   options.max_frames = 150;
   const OfflineResult result =
-      runOffline(tracker, tumFolderFrames(test::bonnDir(), 0, &groundtruth), options);
+      runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth), options);
   ASSERT_EQ(result.frames, 150);
   EXPECT_EQ(result.frames_lost, 0);
   EXPECT_FALSE(result.lost_at_end);
@@ -46,7 +46,7 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
 // Bonn's first frames with 37, 38 and 39 never reaching the tracker: result 37 is Bonn's frame 40.
 OfflineResult runWithThreeDropped(const TrackerConfig& config, int frames) {
   Tracker tracker(bonnCamera(), config);
-  FrameProvider all = tumFolderFrames(test::bonnDir());
+  FrameProvider all = tumFolderFrames(test::bonnDir(), bonnCamera());
   int index = 0;
   FrameProvider dropping = [&]() -> std::optional<OfflineFrame> {
     for (;;) {
@@ -115,7 +115,8 @@ TEST(TrackerBonn, TheSmoothedTrajectoryIsCloserToTheTruth) {
     Tracker tracker(bonnCamera(), config);
     OfflineOptions options;
     options.max_frames = 300;
-    return runOffline(tracker, tumFolderFrames(test::bonnDir(), 0, &groundtruth), options).trajectory;
+    return runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth), options)
+        .trajectory;
   };
   Trajectory groundtruth;
   const Trajectory raw = run(0.0, groundtruth);
@@ -144,7 +145,8 @@ TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
   config.mapping.threaded = false;
   Tracker tracker(bonnCamera(), config);
   Trajectory groundtruth;
-  const OfflineResult result = runOffline(tracker, tumFolderFrames(test::bonnDir(), 0, &groundtruth));
+  const OfflineResult result =
+      runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth));
   ASSERT_GT(result.frames, 900);
   EXPECT_FALSE(result.lost_at_end);
   EXPECT_LE(result.frames_lost, 10);
@@ -155,16 +157,17 @@ TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
   EXPECT_LT(rmse, 0.049) << "ATE RMSE " << rmse;
 }
 
-// The benchmark's reader skips what the tracker process would refuse, and names it: here a depth image that
-// is not at the colour image's size (it would put every keypoint's depth at the wrong pixel).
-TEST(TrackerBonn, AFolderReaderSkipsDepthOfAnotherSizeAndNamesIt) {
+// The benchmark's reader is bmp-capture's: it skips what the pipeline would, and names it. Here a depth image
+// that is not the camera's size (it would put every keypoint's depth at the wrong pixel) and a colour image
+// cut off while written.
+TEST(TrackerBonn, AFolderReaderSkipsWhatCaptureWouldAndNamesIt) {
   namespace fs = std::filesystem;
   const fs::path dir = test::scratchDir("offline_wrong_size");
   fs::create_directories(dir / "rgb");
   fs::create_directories(dir / "depth");
-  FrameProvider bonn = tumFolderFrames(test::bonnDir());
+  FrameProvider bonn = tumFolderFrames(test::bonnDir(), bonnCamera());
   std::ofstream rgb(dir / "rgb.txt"), depth(dir / "depth.txt");
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 4; ++i) {
     const auto f = bonn();
     ASSERT_TRUE(f);
     const std::string name = std::to_string(i) + ".png";
@@ -172,12 +175,13 @@ TEST(TrackerBonn, AFolderReaderSkipsDepthOfAnotherSizeAndNamesIt) {
     cv::Mat d = f->depth;
     if (i == 1) cv::resize(f->depth, d, {320, 240}, 0, 0, cv::INTER_NEAREST);
     cv::imwrite((dir / "depth" / name).string(), d);
+    if (i == 2) fs::resize_file(dir / "rgb" / name, fs::file_size(dir / "rgb" / name) / 2);
     rgb << std::fixed << 1000.0 + i * 0.1 << " rgb/" << name << "\n";
     depth << std::fixed << 1000.0 + i * 0.1 << " depth/" << name << "\n";
   }
   rgb.close();
   depth.close();
-  FrameProvider frames = tumFolderFrames(dir.string());
+  FrameProvider frames = tumFolderFrames(dir.string(), bonnCamera());
   ::testing::internal::CaptureStderr();
   int played = 0;
   while (auto f = frames()) {
@@ -185,9 +189,11 @@ TEST(TrackerBonn, AFolderReaderSkipsDepthOfAnotherSizeAndNamesIt) {
     ++played;
   }
   const std::string warnings = ::testing::internal::GetCapturedStderr();
-  EXPECT_EQ(played, 2);
-  EXPECT_NE(warnings.find((dir / "depth" / "1.png").string() + ": not the colour image's size"),
+  EXPECT_EQ(played, 2);  // frames 0 and 3
+  EXPECT_NE(warnings.find((dir / "depth" / "1.png").string() + ": image is 320x240, the camera is 640x480"),
             std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("skipped " + (dir / "rgb" / "2.png").string() + ": PNG"), std::string::npos)
       << warnings;
 }
 

@@ -152,8 +152,8 @@ struct PassedFrames {
 // --detector: the detector (config/detector.yaml, its model replaced by --detector-model if given) over
 // every frame of one pass (at most max_frames, < 0: all), before any tracking, so its time counts nowhere and
 // the tracker runs as fast as without it; frame i of each pass gets boxes[i].
-std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const std::string& dir, int start,
-                                              int max_frames) {
+std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const std::string& dir,
+                                              const CameraIntrinsics& camera, int start, int max_frames) {
   const bmp::Config file = bmp::Config::fromFile(bmp::configDir() + "/detector.yaml");
   auto settings = bmp::detector::detectorSettingsFromConfig(file, std::nullopt, bmp::configDir());
   file.finish();
@@ -166,7 +166,7 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const st
                settings.detector.input_size);
   bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   std::vector<std::vector<ObjectBox>> all;
-  FrameProvider frames = tumFolderFrames(dir, start);
+  FrameProvider frames = tumFolderFrames(dir, camera, start);
   while (max_frames < 0 || static_cast<int>(all.size()) < max_frames) {
     const auto frame = frames();
     if (!frame) break;
@@ -227,7 +227,8 @@ long long boxLag(const bmp::ArgParser& args, bool detect) {
 }
 
 // detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
-PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const TrackResult> last, bool detect,
+PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& camera,
+                          std::shared_ptr<const TrackResult> last, bool detect,
                           const DynamicOptions& dynamic) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
@@ -241,7 +242,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
   if (drop_seed < 0) throw bmp::ArgError("--drop-seed must not be negative");
   PassedFrames out;
   bmp::Trajectory one_pass;
-  FrameProvider first = tumFolderFrames(dir, start, &one_pass, masks);
+  FrameProvider first = tumFolderFrames(dir, camera, start, &one_pass, masks);
   // The period, from the stamps of one pass read without its images.
   const auto index = bmp::capture::indexSequence(dir);
   const double period =
@@ -256,7 +257,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
       out.groundtruth.push_back(shifted);
     }
   auto boxes = std::make_shared<const std::vector<std::vector<ObjectBox>>>(
-      detect ? detectAll(args.value("detector-model"), dir, start, maxFrames(args))
+      detect ? detectAll(args.value("detector-model"), dir, camera, start, maxFrames(args))
              : std::vector<std::vector<ObjectBox>>{});
   auto stamps = std::make_shared<std::vector<double>>();
   auto current = std::make_shared<FrameProvider>(std::move(first));
@@ -299,7 +300,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, std::shared_ptr<const Trac
                     static_cast<double>(bmp::residentBytes()) / (1 << 20));
       std::fflush(stdout);
       if (++*pass >= passes) return std::nullopt;
-      *current = tumFolderFrames(dir, start, nullptr, masks);
+      *current = tumFolderFrames(dir, camera, start, nullptr, masks);
     }
   };
   return out;
@@ -315,8 +316,9 @@ int runBenchTracker(const bmp::ArgParser& args) {
   const TrackerConfig config = loadConfig(args);
   Tracker tracker(selected.intrinsics, config);
   auto last = std::make_shared<TrackResult>();
-  const PassedFrames input = passedFrames(
-      args, last, args.flag("detector") && config.dynamic.mode != DynamicMode::kNone, config.dynamic);
+  const PassedFrames input =
+      passedFrames(args, selected.intrinsics, last,
+                   args.flag("detector") && config.dynamic.mode != DynamicMode::kNone, config.dynamic);
   OfflineOptions options = offlineOptions(args);
   auto times = std::make_shared<FrameTimes>();
   auto scored = std::make_shared<MaskScore>();

@@ -8,7 +8,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "bmp/common/image_codec.hpp"
 #include "capture/tum_sequence.hpp"
+#include "capture/tum_source.hpp"
 
 namespace bmp::tracker {
 
@@ -44,37 +46,35 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
   return out;
 }
 
-FrameProvider tumFolderFrames(const std::string& dir, int start, Trajectory* groundtruth, bool load_masks) {
-  auto index = std::make_shared<capture::SequenceIndex>(capture::indexSequence(dir));
-  if (groundtruth) *groundtruth = index->groundtruth;
-  for (const auto& path : index->missing_files)
-    std::fprintf(stderr, "warning: %s: listed but does not exist; skipped\n", path.c_str());
-  if (!index->groundtruth_problem.empty())
-    std::fprintf(stderr, "warning: %s; no ground truth\n", index->groundtruth_problem.c_str());
-  for (const auto& problem : index->list_problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
-  auto position = std::make_shared<std::size_t>(static_cast<std::size_t>(std::max(0, start)));
-  return [index, position, load_masks]() -> std::optional<OfflineFrame> {
-    while (*position < index->frames.size()) {
-      const auto& pair = index->frames[(*position)++];
+FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start,
+                              Trajectory* groundtruth, bool load_masks) {
+  capture::SequenceIndex index = capture::indexSequence(dir);
+  if (groundtruth) *groundtruth = index.groundtruth;
+  if (!index.groundtruth_problem.empty())
+    std::fprintf(stderr, "warning: %s; no ground truth\n", index.groundtruth_problem.c_str());
+  for (const auto& problem : index.list_problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
+  const std::string root = index.dir;
+  // bmp-capture's reader, so a benchmark plays the frames the pipeline would: the same checks of each file
+  // (missing, corrupt, not the camera's size or format), each skip named.
+  capture::TumSourceOptions options;
+  options.selection.start = std::max(0, start);
+  options.warn = [](const std::string& line) { std::fprintf(stderr, "warning: %s\n", line.c_str()); };
+  auto source = std::make_shared<capture::TumSource>(std::move(index), camera, std::move(options));
+  return [source, root, load_masks]() -> std::optional<OfflineFrame> {
+    while (auto captured = source->next()) {
       OfflineFrame f;
-      f.stamp = pair.rgb_stamp;
-      f.image = cv::imread(pair.rgb_path, cv::IMREAD_COLOR);
-      f.depth = cv::imread(pair.depth_path, cv::IMREAD_UNCHANGED);
-      // The tracker process's rule (tracker_node.cpp): depth is 16-bit at the colour image's size. Named, so
-      // a benchmark's frame count can be matched with the files behind it.
-      const std::string why =
-          f.image.empty()                    ? pair.rgb_path + ": cannot be read as an image"
-          : f.depth.empty()                  ? pair.depth_path + ": cannot be read as an image"
-          : f.depth.type() != CV_16UC1       ? pair.depth_path + ": not 16-bit single-channel depth"
-          : f.depth.size() != f.image.size() ? pair.depth_path + ": not the colour image's size"
-                                             : std::string();
-      if (!why.empty()) {
-        std::fprintf(stderr, "warning: frame %.6f skipped: %s\n", pair.rgb_stamp, why.c_str());
+      f.stamp = captured->stamp;
+      try {
+        f.image = decodeImage(captured->color);
+        f.depth = decodeImage(captured->depth);
+      } catch (const ImageError& e) {
+        std::fprintf(stderr, "warning: frame %.6f skipped: %s\n", captured->stamp, e.what());
         continue;
       }
       if (load_masks) {
+        const auto& pair = source->index().frames[static_cast<std::size_t>(captured->index)];
         const auto mask =
-            std::filesystem::path(index->dir) / "mask" / std::filesystem::path(pair.rgb_path).filename();
+            std::filesystem::path(root) / "mask" / std::filesystem::path(pair.rgb_path).filename();
         f.mover_mask = cv::imread(mask.string(), cv::IMREAD_GRAYSCALE);
         if (f.mover_mask.size() != f.image.size())
           throw std::runtime_error(mask.string() + ": missing, unreadable or not the size of " +

@@ -55,11 +55,12 @@ struct OfflineResult {
 OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const OfflineOptions& options = {});
 
 // Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), starting
-// at `start`; pairs whose files are missing or unreadable are skipped. groundtruth receives the folder's
-// ground truth when not null.
+// at `start`, read by bmp-capture's reader (capture::TumSource): a pair with a file missing, corrupt or not
+// the camera's size and format is skipped with a warning on stderr naming the file. groundtruth receives
+// the folder's ground truth when not null.
 // With load_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) is each frame's mover mask; a folder
 // with load_masks and no such file is an error naming it.
-FrameProvider tumFolderFrames(const std::string& dir, int start = 0, Trajectory* groundtruth = nullptr,
-                              bool load_masks = false);
+FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start = 0,
+                              Trajectory* groundtruth = nullptr, bool load_masks = false);
 
 }  // namespace bmp::tracker
