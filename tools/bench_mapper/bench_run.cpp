@@ -5,9 +5,8 @@
 #include <iostream>
 #include <optional>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "bmp/common/config.hpp"
+#include "bmp/common/image_codec.hpp"
 #include "bmp/common/memory_usage.hpp"
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tool_main.hpp"
@@ -15,6 +14,7 @@
 #include "capture/camera_selection.hpp"
 #include "capture/synthetic_scene.hpp"
 #include "capture/tum_sequence.hpp"
+#include "capture/tum_source.hpp"
 #include "mapper/map_files.hpp"
 #include "mapper/mapper_config.hpp"
 
@@ -40,20 +40,35 @@ bool poseAt(const Trajectory& gt, double stamp, SE3& T) {
 // first: the first keyframe mapped (kept, as nothing came before it to merge into), for the rebuild timing.
 void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m,
              std::optional<PoseUpdate>& first) {
-  const capture::SequenceIndex index = capture::indexSequence(args.value("dataset"));
+  capture::SequenceIndex index = capture::indexSequence(args.value("dataset"));
   if (index.groundtruth.empty()) throw std::runtime_error(args.value("dataset") + ": no groundtruth.txt");
+  const int64_t frames = static_cast<int64_t>(index.frames.size());
   const CameraIntrinsics camera =
       capture::selectCamera(args.value("dataset"), args.value("camera"), configDir() + "/cameras").intrinsics;
+  // bmp-capture's reader: a missing, corrupt or wrongly sized file is skipped and named, as in the pipeline.
+  capture::TumSourceOptions options;
+  options.selection.every = every;
+  if (loop == 0)
+    options.warn = [](const std::string& line) { std::fprintf(stderr, "warning: %s\n", line.c_str()); };
+  capture::TumSource source(std::move(index), camera, std::move(options));
   int fed = 0;
-  for (std::size_t i = 0; i < index.frames.size() && fed < limit; i += every) {
+  while (fed < limit) {
+    const auto frame = source.next();
+    if (!frame) break;
     KeyframeInput kf;
-    kf.id = static_cast<int64_t>(loop) * static_cast<int64_t>(index.frames.size()) + static_cast<int64_t>(i);
+    kf.id = static_cast<int64_t>(loop) * frames + frame->index;
     kf.camera = camera;
-    if (!poseAt(index.groundtruth, index.frames[i].rgb_stamp, kf.T_world_cam)) continue;
-    kf.color = cv::imread(index.frames[i].rgb_path, cv::IMREAD_COLOR);
-    kf.depth = cv::imread(index.frames[i].depth_path, cv::IMREAD_UNCHANGED);
+    if (!poseAt(source.index().groundtruth, frame->stamp, kf.T_world_cam)) continue;
+    try {
+      kf.color = decodeImage(frame->color);
+      kf.depth = decodeImage(frame->depth);
+    } catch (const ImageError& e) {
+      std::fprintf(stderr, "frame %lld: %s\n", static_cast<long long>(frame->index), e.what());
+      continue;
+    }
     const IntegrateResult r = m.integrate(kf);
-    if (!r.ok) std::fprintf(stderr, "frame %zu: %s\n", i, r.reason.c_str());
+    if (!r.ok)
+      std::fprintf(stderr, "frame %lld: %s\n", static_cast<long long>(frame->index), r.reason.c_str());
     if (r.ok && !first) first = PoseUpdate{kf.id, kf.T_world_cam};
     fed += r.ok;
   }
