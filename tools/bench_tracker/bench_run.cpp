@@ -166,7 +166,8 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const st
                settings.detector.input_size);
   bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   std::vector<std::vector<ObjectBox>> all;
-  FrameProvider frames = tumFolderFrames(dir, camera, start);
+  // Quiet: the tracking pass that follows reads the same files and names what it skips.
+  FrameProvider frames = tumFolderFrames(dir, camera, start, nullptr, false, false);
   while (max_frames < 0 || static_cast<int>(all.size()) < max_frames) {
     const auto frame = frames();
     if (!frame) break;
@@ -300,7 +301,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
                     static_cast<double>(bmp::residentBytes()) / (1 << 20));
       std::fflush(stdout);
       if (++*pass >= passes) return std::nullopt;
-      *current = tumFolderFrames(dir, camera, start, nullptr, masks);
+      *current = tumFolderFrames(dir, camera, start, nullptr, masks, false);  // said in the first pass
     }
   };
   return out;

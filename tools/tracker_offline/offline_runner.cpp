@@ -47,20 +47,22 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
 }
 
 FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start,
-                              Trajectory* groundtruth, bool load_masks) {
+                              Trajectory* groundtruth, bool load_masks, bool warn) {
   capture::SequenceIndex index = capture::indexSequence(dir);
   if (groundtruth) *groundtruth = index.groundtruth;
-  if (!index.groundtruth_problem.empty())
-    std::fprintf(stderr, "warning: %s; no ground truth\n", index.groundtruth_problem.c_str());
-  for (const auto& problem : index.list_problems) std::fprintf(stderr, "warning: %s\n", problem.c_str());
+  const auto say = [warn](const std::string& line) {
+    if (warn) std::fprintf(stderr, "warning: %s\n", line.c_str());
+  };
+  if (!index.groundtruth_problem.empty()) say(index.groundtruth_problem + "; no ground truth");
+  for (const auto& problem : index.list_problems) say(problem);
   const std::string root = index.dir;
   // bmp-capture's reader, so a benchmark plays the frames the pipeline would: the same checks of each file
   // (missing, corrupt, not the camera's size or format), each skip named.
   capture::TumSourceOptions options;
   options.selection.start = std::max(0, start);
-  options.warn = [](const std::string& line) { std::fprintf(stderr, "warning: %s\n", line.c_str()); };
+  options.warn = say;
   auto source = std::make_shared<capture::TumSource>(std::move(index), camera, std::move(options));
-  return [source, root, load_masks]() -> std::optional<OfflineFrame> {
+  return [source, root, load_masks, say]() -> std::optional<OfflineFrame> {
     while (auto captured = source->next()) {
       OfflineFrame f;
       f.stamp = captured->stamp;
@@ -68,7 +70,7 @@ FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& ca
         f.image = decodeImage(captured->color);
         f.depth = decodeImage(captured->depth);
       } catch (const ImageError& e) {
-        std::fprintf(stderr, "warning: frame %.6f skipped: %s\n", captured->stamp, e.what());
+        say("skipped frame " + std::to_string(captured->stamp) + ": " + e.what());
         continue;
       }
       if (load_masks) {

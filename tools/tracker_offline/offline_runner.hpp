@@ -60,7 +60,8 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
 // the folder's ground truth when not null.
 // With load_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) is each frame's mover mask; a folder
 // with load_masks and no such file is an error naming it.
+// With warn false the folder's problems go unsaid: for a second reading of a folder already read aloud.
 FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start = 0,
-                              Trajectory* groundtruth = nullptr, bool load_masks = false);
+                              Trajectory* groundtruth = nullptr, bool load_masks = false, bool warn = true);
 
 }  // namespace bmp::tracker
