@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -243,6 +244,26 @@ TEST(BenchTrackerDrops, AProbabilityOutOfRangeIsAnErrorNamingTheOption) {
     EXPECT_NE(o.status, 0) << o.output;
     EXPECT_NE(o.output.find("--drop-bursts"), std::string::npos) << o.output;
   }
+}
+
+// The benchmark reads folders as bmp-capture does: a camera file that does not fit the images skips every
+// frame, each named, and a run of no frames is an error naming the folder (as capture exits 1), not a
+// summary of zeros.
+TEST(BenchTrackerReader, AFolderWithNoReadableFrameIsAnErrorNamingIt) {
+  const fs::path camera = test::scratchDir("camera") / "small.yaml";
+  std::ifstream bonn(test::sourceDir() + "/config/cameras/bonn.yaml");
+  std::stringstream text;
+  text << bonn.rdbuf();
+  std::ofstream(camera) << std::regex_replace(
+      std::regex_replace(text.str(), std::regex("width: 640"), "width: 320"), std::regex("height: 480"),
+      "height: 240");
+  const Outcome o = runCommand("no_frame",
+                               {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--camera",
+                                camera.string(), "--frames", "5"},
+                               kTimeoutS);
+  EXPECT_EQ(o.status, 1) << o.output;
+  EXPECT_NE(o.output.find(test::bonnDir() + ": no frame could be read"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("image is 640x480, the camera is 320x240"), std::string::npos) << o.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 #include "bmp/common/config.hpp"
 #include "bmp/common/image_codec.hpp"
@@ -72,6 +73,10 @@ void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m,
     if (r.ok && !first) first = PoseUpdate{kf.id, kf.T_world_cam};
     fed += r.ok;
   }
+  if (fed == 0 && limit > 0)
+    throw std::runtime_error(args.value("dataset") +
+                             ": no frame with a ground-truth pose could be read and integrated (each skip is "
+                             "named above)");
 }
 
 void feedSynthetic(int every, int limit, int loop, Mapper& m, std::optional<PoseUpdate>& first) {

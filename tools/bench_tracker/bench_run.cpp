@@ -359,6 +359,9 @@ int runBenchTracker(const bmp::ArgParser& args) {
     *last = r;
   };
   const OfflineResult result = runOffline(tracker, input.frames, options);
+  // As bmp-capture, which exits 1 when it published nothing: a benchmark of no frames is no result.
+  if (result.frames == 0 && maxFrames(args) != 0)
+    throw std::runtime_error(args.value("dataset") + ": no frame could be read (each skip is named above)");
   const bmp::Trajectory& groundtruth = input.groundtruth;
   if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
   if (args.given("keyframe-trajectory"))
