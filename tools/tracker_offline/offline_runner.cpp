@@ -55,14 +55,13 @@ FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& ca
   };
   if (!index.groundtruth_problem.empty()) say(index.groundtruth_problem + "; no ground truth");
   for (const auto& problem : index.list_problems) say(problem);
-  const std::string root = index.dir;
   // bmp-capture's reader, so a benchmark plays the frames the pipeline would: the same checks of each file
   // (missing, corrupt, not the camera's size or format), each skip named.
   capture::TumSourceOptions options;
   options.selection.start = std::max(0, start);
   options.warn = say;
   auto source = std::make_shared<capture::TumSource>(std::move(index), camera, std::move(options));
-  return [source, root, load_masks, say]() -> std::optional<OfflineFrame> {
+  return [source, load_masks, say]() -> std::optional<OfflineFrame> {
     while (auto captured = source->next()) {
       OfflineFrame f;
       f.stamp = captured->stamp;
@@ -75,8 +74,8 @@ FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& ca
       }
       if (load_masks) {
         const auto& pair = source->index().frames[static_cast<std::size_t>(captured->index)];
-        const auto mask =
-            std::filesystem::path(root) / "mask" / std::filesystem::path(pair.rgb_path).filename();
+        const auto mask = std::filesystem::path(source->index().dir) / "mask" /
+                          std::filesystem::path(pair.rgb_path).filename();
         f.mover_mask = cv::imread(mask.string(), cv::IMREAD_GRAYSCALE);
         if (f.mover_mask.size() != f.image.size())
           throw std::runtime_error(mask.string() + ": missing, unreadable or not the size of " +
