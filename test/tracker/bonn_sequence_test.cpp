@@ -23,6 +23,13 @@ CameraIntrinsics bonnCamera() {
   return cameraFromConfig(file.section("camera"));
 }
 
+// Bonn's frames from the first, its ground truth into groundtruth.
+FrameProvider bonnFrames(Trajectory* groundtruth) {
+  TumFolderOptions folder;
+  folder.groundtruth = groundtruth;
+  return tumFolderFrames(test::bonnDir(), bonnCamera(), folder);
+}
+
 TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   TrackerConfig config;
   config.mapping.threaded = false;  // deterministic
@@ -30,8 +37,7 @@ TEST(TrackerBonn, First150FramesTrackWithSmallError) {
   Trajectory groundtruth;
   OfflineOptions options;
   options.max_frames = 150;
-  const OfflineResult result =
-      runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth), options);
+  const OfflineResult result = runOffline(tracker, bonnFrames(&groundtruth), options);
   ASSERT_EQ(result.frames, 150);
   EXPECT_EQ(result.frames_lost, 0);
   EXPECT_FALSE(result.lost_at_end);
@@ -115,8 +121,7 @@ TEST(TrackerBonn, TheSmoothedTrajectoryIsCloserToTheTruth) {
     Tracker tracker(bonnCamera(), config);
     OfflineOptions options;
     options.max_frames = 300;
-    return runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth), options)
-        .trajectory;
+    return runOffline(tracker, bonnFrames(&groundtruth), options).trajectory;
   };
   Trajectory groundtruth;
   const Trajectory raw = run(0.0, groundtruth);
@@ -145,8 +150,7 @@ TEST(TrackerBonn, WholeSequenceNoWorseThanOrbSlam2) {
   config.mapping.threaded = false;
   Tracker tracker(bonnCamera(), config);
   Trajectory groundtruth;
-  const OfflineResult result =
-      runOffline(tracker, tumFolderFrames(test::bonnDir(), bonnCamera(), 0, &groundtruth));
+  const OfflineResult result = runOffline(tracker, bonnFrames(&groundtruth));
   ASSERT_GT(result.frames, 900);
   EXPECT_FALSE(result.lost_at_end);
   EXPECT_LE(result.frames_lost, 10);

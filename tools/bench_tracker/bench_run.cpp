@@ -166,8 +166,10 @@ std::vector<std::vector<ObjectBox>> detectAll(const std::string& model, const st
                settings.detector.input_size);
   bmp::detector::Detector detector(settings.detector, bmp::Config::fromFile(settings.dynamic_classes_path));
   std::vector<std::vector<ObjectBox>> all;
-  // Quiet: the tracking pass that follows reads the same files and names what it skips.
-  FrameProvider frames = tumFolderFrames(dir, camera, start, nullptr, false, false);
+  TumFolderOptions folder;
+  folder.start = start;
+  folder.warn = false;  // the tracking pass that follows reads the same files and names what it skips
+  FrameProvider frames = tumFolderFrames(dir, camera, folder);
   while (max_frames < 0 || static_cast<int>(all.size()) < max_frames) {
     const auto frame = frames();
     if (!frame) break;
@@ -233,7 +235,6 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
                           const DynamicOptions& dynamic) {
   const std::string dir = args.value("dataset");
   const int start = static_cast<int>(args.integer("start"));
-  const bool masks = args.flag("oracle-masks") || args.flag("score-masks");
   const long long passes = args.integer("passes");
   if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
   const long long lag = boxLag(args, detect);
@@ -243,7 +244,13 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
   if (drop_seed < 0) throw bmp::ArgError("--drop-seed must not be negative");
   PassedFrames out;
   bmp::Trajectory one_pass;
-  FrameProvider first = tumFolderFrames(dir, camera, start, &one_pass, masks);
+  TumFolderOptions folder;
+  folder.start = start;
+  folder.load_masks = args.flag("oracle-masks") || args.flag("score-masks");
+  folder.groundtruth = &one_pass;
+  FrameProvider first = tumFolderFrames(dir, camera, folder);
+  folder.groundtruth = nullptr;
+  folder.warn = false;  // the later passes read what the first has named
   // The period, from the stamps of one pass read without its images.
   const auto index = bmp::capture::indexSequence(dir);
   const double period =
@@ -301,7 +308,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
                     static_cast<double>(bmp::residentBytes()) / (1 << 20));
       std::fflush(stdout);
       if (++*pass >= passes) return std::nullopt;
-      *current = tumFolderFrames(dir, camera, start, nullptr, masks, false);  // said in the first pass
+      *current = tumFolderFrames(dir, camera, folder);
     }
   };
   return out;

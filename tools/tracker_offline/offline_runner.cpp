@@ -46,11 +46,11 @@ OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const Offl
   return out;
 }
 
-FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start,
-                              Trajectory* groundtruth, bool load_masks, bool warn) {
+FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera,
+                              const TumFolderOptions& folder) {
   capture::SequenceIndex index = capture::indexSequence(dir);
-  if (groundtruth) *groundtruth = index.groundtruth;
-  const auto say = [warn](const std::string& line) {
+  if (folder.groundtruth) *folder.groundtruth = index.groundtruth;
+  const auto say = [warn = folder.warn](const std::string& line) {
     if (warn) std::fprintf(stderr, "warning: %s\n", line.c_str());
   };
   if (!index.groundtruth_problem.empty()) say(index.groundtruth_problem + "; no ground truth");
@@ -58,10 +58,10 @@ FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& ca
   // bmp-capture's reader, so a benchmark plays the frames the pipeline would: the same checks of each file
   // (missing, corrupt, not the camera's size or format), each skip named.
   capture::TumSourceOptions options;
-  options.selection.start = std::max(0, start);
+  options.selection.start = std::max(0, folder.start);
   options.warn = say;
   auto source = std::make_shared<capture::TumSource>(std::move(index), camera, std::move(options));
-  return [source, load_masks, say]() -> std::optional<OfflineFrame> {
+  return [source, load_masks = folder.load_masks, say]() -> std::optional<OfflineFrame> {
     while (auto captured = source->next()) {
       OfflineFrame f;
       f.stamp = captured->stamp;

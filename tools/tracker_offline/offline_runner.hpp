@@ -54,14 +54,20 @@ struct OfflineResult {
 
 OfflineResult runOffline(Tracker& tracker, const FrameProvider& next, const OfflineOptions& options = {});
 
-// Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), starting
-// at `start`, read by bmp-capture's reader (capture::TumSource): a pair with a file missing, corrupt or not
-// the camera's size and format is skipped with a warning on stderr naming the file. groundtruth receives
-// the folder's ground truth when not null.
-// With load_masks, DIR/mask/<rgb file name> (as bmp-synth writes it) is each frame's mover mask; a folder
-// with load_masks and no such file is an error naming it.
-// With warn false the folder's problems go unsaid: for a second reading of a folder already read aloud.
-FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera, int start = 0,
-                              Trajectory* groundtruth = nullptr, bool load_masks = false, bool warn = true);
+struct TumFolderOptions {
+  int start = 0;                      // the first frame pair played
+  Trajectory* groundtruth = nullptr;  // receives the folder's ground truth when not null
+  // DIR/mask/<rgb file name> (as bmp-synth writes it) is each frame's mover mask; a frame without one is an
+  // error naming the file.
+  bool load_masks = false;
+  // False leaves the folder's problems unsaid: for a second reading of a folder already read aloud.
+  bool warn = true;
+};
+
+// Frames of a TUM-format folder (rgb.txt, depth.txt, associated by bmp::capture::indexSequence), read by
+// bmp-capture's reader (capture::TumSource): a pair with a file missing, corrupt or not the camera's size
+// and format is skipped with a warning on stderr naming the file.
+FrameProvider tumFolderFrames(const std::string& dir, const CameraIntrinsics& camera,
+                              const TumFolderOptions& options = {});
 
 }  // namespace bmp::tracker
