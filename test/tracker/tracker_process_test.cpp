@@ -331,7 +331,8 @@ TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
 }
 
 // Answers from another publisher: one for an image of another size, one naming a frame already heard with
-// another stamp. Each is refused with the reason (counted as malformed), and tracking goes on.
+// another stamp. Each is refused with the reason (counted as malformed), and tracking goes on. The
+// detector's own answer for a frame it could not read (skipped, no boxes, no image size) is not refused.
 TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
   TrackerUnderTest t("tracker_forged_answers", 4);
   ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
@@ -346,8 +347,14 @@ TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
   wrong_stamp.utime += 1;
   wrong_stamp.image_width = 640;
   wrong_stamp.image_height = 480;
+  detections_t skipped{};
+  skipped.seq = 5;
+  skipped.utime = t.frame(5).utime;
+  skipped.model = "yolov5n_coco_320";
+  skipped.skipped = "colour image: not a PNG";  // as bmp-detector answers: image size 0x0
   t.publish("DETECTIONS", wrong_size);
   t.publish("DETECTIONS", wrong_stamp);
+  t.publish("DETECTIONS", skipped);
   for (int i = 5; i < 8; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
   EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK));
   EXPECT_EQ(t.child().stop(20.0), 0);
@@ -357,6 +364,7 @@ TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
   EXPECT_NE(log.find("answer for frame 4 has stamp " + std::to_string(wrong_stamp.utime) + " us"),
             std::string::npos)
       << log;
+  EXPECT_EQ(log.find("answer for frame 5"), std::string::npos) << log;
 }
 
 }  // namespace

@@ -86,9 +86,10 @@ void TrackerNode::onDetections(const detections_t& msg) {
   // Checked as the contract says (levels, classes, boxes inside the image); a bad one throws and is
   // counted as malformed by the LCM node.
   const detector::FrameDetections d = detector::fromDetectionsMessage(msg);
-  // Boxes in another image's pixels would cut the wrong regions.
+  // Boxes in another image's pixels would cut the wrong regions. A skipped answer has no boxes and no
+  // image size (the detector could not read the frame).
   if (const camera_t* camera = stream_.camera();
-      camera != nullptr && (d.width != camera->width || d.height != camera->height))
+      camera != nullptr && d.skipped.empty() && (d.width != camera->width || d.height != camera->height))
     throw std::runtime_error("answer for frame " + std::to_string(d.seq) + " is for a " +
                              std::to_string(d.width) + "x" + std::to_string(d.height) +
                              " image, the camera's is " + std::to_string(camera->width) + "x" +
