@@ -22,12 +22,16 @@ std::string checkCamera(const CameraIntrinsics& k) {
   return "";
 }
 
-std::string checkImage(const cv::Mat& m, int type, const CameraIntrinsics& k, const char* what) {
-  if (m.type() != type) return std::string(what) + " has the wrong pixel type";
-  if (m.cols != k.width || m.rows != k.height)
-    return std::string(what) + " is " + std::to_string(m.cols) + "x" + std::to_string(m.rows) +
+std::string checkSize(const cv::Size& size, const CameraIntrinsics& k, const char* what) {
+  if (size.width != k.width || size.height != k.height)
+    return std::string(what) + " is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
            ", camera is " + std::to_string(k.width) + "x" + std::to_string(k.height);
   return "";
+}
+
+std::string checkImage(const cv::Mat& m, int type, const CameraIntrinsics& k, const char* what) {
+  if (m.type() != type) return std::string(what) + " has the wrong pixel type";
+  return checkSize(m.size(), k, what);
 }
 
 }  // namespace
@@ -38,6 +42,15 @@ std::string checkPose(const SE3& T) {
   if ((R * R.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 || R.determinant() < 0)
     return "pose rotation is not a rotation";
   return "";
+}
+
+std::string checkKeyframeHeader(const CameraIntrinsics& camera, const cv::Size& depth, const cv::Size& color,
+                                const cv::Size& mask) {
+  std::string why = checkCamera(camera);
+  if (why.empty()) why = checkSize(depth, camera, "depth");
+  if (why.empty()) why = checkSize(color, camera, "colour");
+  if (why.empty() && !mask.empty()) why = checkSize(mask, camera, "mask");
+  return why;
 }
 
 std::string checkKeyframe(const KeyframeInput& kf) {

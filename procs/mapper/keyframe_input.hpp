@@ -23,6 +23,10 @@ struct KeyframeInput {
 // Why the keyframe cannot be mapped (non-finite or impossible intrinsics or pose, images of the wrong type
 // or size), or "" when it can.
 std::string checkKeyframe(const KeyframeInput& kf);
+// Why a keyframe whose camera and declared image sizes these are cannot be mapped, or "": checked before its
+// images are decoded, since a few hostile bytes of PNG can declare a picture of gigabytes.
+std::string checkKeyframeHeader(const CameraIntrinsics& camera, const cv::Size& depth, const cv::Size& color,
+                                const cv::Size& mask);
 // Why a pose cannot be used (non-finite, rotation not orthonormal), or "".
 std::string checkPose(const SE3& T);
 

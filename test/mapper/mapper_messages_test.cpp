@@ -48,6 +48,22 @@ TEST(MapperMessages, WrongSizes) {
   EXPECT_NE(reasonOf(m).find("depth is 80x60"), std::string::npos) << reasonOf(m);
 }
 
+// A PNG that declares a picture larger than the camera's is refused before it is decoded: a few hundred KB
+// of zeros can declare gigabytes of pixels.
+TEST(MapperMessages, AnImageLargerThanTheCameraIsRefusedUndecoded) {
+  keyframe_t m = good();
+  m.depth = toMsg(encodeImage(cv::Mat::zeros(2000, 3000, CV_16UC1), ImageEncoding::kPng));
+  KeyframeInput kf;
+  const std::string why = keyframeFromMessage(m, kf);
+  EXPECT_NE(why.find("depth is 3000x2000, camera is"), std::string::npos) << why;
+  EXPECT_TRUE(kf.depth.empty()) << "decoded: " << kf.depth.cols << "x" << kf.depth.rows;
+  m = good();
+  m.color = toMsg(encodeImage(cv::Mat::zeros(2000, 3000, CV_8UC3), ImageEncoding::kPng));
+  kf = KeyframeInput{};
+  EXPECT_NE(keyframeFromMessage(m, kf).find("colour is 3000x2000"), std::string::npos);
+  EXPECT_TRUE(kf.color.empty() && kf.depth.empty());
+}
+
 TEST(MapperMessages, NonFinitePoseOrIntrinsics) {
   keyframe_t m = good();
   m.T_world_cam.orientation[0] = std::numeric_limits<double>::quiet_NaN();

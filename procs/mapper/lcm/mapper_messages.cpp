@@ -18,6 +18,11 @@ std::string keyframeFromMessage(const keyframe_t& msg, KeyframeInput& out) {
   out.T_world_cam = fromMsg(msg.T_world_cam);
   if (std::string why = checkPoseMessage(msg.T_world_cam); !why.empty()) return why;
   out.camera = fromMsg(msg.camera, msg.depth_scale);
+  const auto declared = [](const image_t& image) { return cv::Size(image.width, image.height); };
+  if (std::string why = checkKeyframeHeader(out.camera, declared(msg.depth), declared(msg.color),
+                                            declared(msg.dynamic_mask));
+      !why.empty())
+    return why;
   const auto decode = [](const image_t& image, const char* what, cv::Mat& into) -> std::string {
     try {
       into = decodeImage(fromMsg(image));
