@@ -93,9 +93,24 @@ ImageProbe probeJpeg(const std::vector<uint8_t>& b) {
   return probe;
 }
 
+// Progressive JPEG encoders write about 10 scans (libjpeg's default script); each scan is decoded over the
+// whole image, so a message of many tiny scans costs seconds to decode (100000 of them: 1.35 s).
+constexpr int kMaxJpegScans = 64;
+
+// Start-of-scan markers in the data: an upper bound (a table's bytes may look like one), which is all the
+// limit needs. Entropy-coded data escapes every 0xFF, so real scans cannot hide.
+int countJpegScans(const std::vector<uint8_t>& b) {
+  int scans = 0;
+  for (std::size_t i = 0; i + 1 < b.size(); ++i)
+    if (b[i] == 0xFF && b[i + 1] == 0xDA) ++scans;
+  return scans;
+}
+
 // The size an encoded image's header declares, read without decoding (for PNG only the IHDR chunk, so
 // no CRC walk over the whole file): decodeImage compares it with the declared size before OpenCV
-// allocates anything, since a few hundred hostile bytes can claim 20000x20000 pixels.
+// allocates anything, since a few hundred hostile bytes can claim 20000x20000 pixels. Also refuses what
+// would cost far more to decode than its declared size: a 16-bit image that is not grey (decoded
+// unchanged, up to 8 bytes a pixel), a JPEG of too many scans.
 std::pair<int, int> headerSize(const EncodedImage& image) {
   const std::vector<uint8_t>& b = image.data;
   if (image.encoding == ImageEncoding::kPng) {
@@ -104,11 +119,18 @@ std::pair<int, int> headerSize(const EncodedImage& image) {
       throw ImageError("no PNG header");
     const uint32_t width = readBE32(&b[16]);
     const uint32_t height = readBE32(&b[20]);
+    const int bit_depth = b[24], colour_type = b[25];
+    if (image.pixel_format == PixelFormat::kMono16 && (bit_depth != 16 || colour_type != 0))
+      throw ImageError("PNG is " + std::to_string(bit_depth) + "-bit of colour type " +
+                       std::to_string(colour_type) + ", not 16-bit grey as declared (not decoded)");
     const auto side = [](uint32_t v) { return v > 1u << 30 ? -1 : static_cast<int>(v); };
     return {side(width), side(height)};
   }
   if (b.size() < 3 || b[0] != 0xFF || b[1] != 0xD8 || b[2] != 0xFF) throw ImageError("no JPEG header");
   const ImageProbe probe = probeJpeg(b);  // walks the header segments only
+  if (const int scans = countJpegScans(b); scans > kMaxJpegScans)
+    throw ImageError("JPEG has " + std::to_string(scans) + " scans, more than " +
+                     std::to_string(kMaxJpegScans) + " (not decoded)");
   return {probe.width, probe.height};
 }
 

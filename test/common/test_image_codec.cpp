@@ -97,6 +97,44 @@ TEST(ImageCodec, AHeaderClaimingAHugeImageIsRefusedBeforeDecoding) {
   EXPECT_THROW(decodeImage(colour), ImageError);
 }
 
+// What costs far more to decode than the size it declares is refused before decoding: a depth PNG that is
+// not 16-bit grey (16-bit colour decodes unchanged to 6 or 8 bytes a pixel), a JPEG of many scans.
+TEST(ImageCodec, ADepthPngThatIsNotSixteenBitGreyIsRefusedBeforeDecoding) {
+  const EncodedImage real{640, 480, ImageEncoding::kPng, PixelFormat::kMono16,
+                          readFileBytes(test::sharedPath(kDepth))};
+  EXPECT_EQ(decodeImage(real).type(), CV_16UC1);
+  EncodedImage colour16{640, 480, ImageEncoding::kPng, PixelFormat::kMono16, {}};
+  ASSERT_TRUE(cv::imencode(".png", cv::Mat(480, 640, CV_16UC3, cv::Scalar(1, 2, 3)), colour16.data));
+  EXPECT_EQ(
+      decodeError(colour16),
+      "undecodable png data: PNG is 16-bit of colour type 2, not 16-bit grey as declared (not decoded)");
+  EncodedImage grey8 = encodeImage(cv::Mat(480, 640, CV_8UC1, cv::Scalar(9)), ImageEncoding::kPng);
+  grey8.pixel_format = PixelFormat::kMono16;
+  EXPECT_EQ(decodeError(grey8),
+            "undecodable png data: PNG is 8-bit of colour type 0, not 16-bit grey as declared (not decoded)");
+}
+
+TEST(ImageCodec, AJpegOfManyScansIsRefusedAndAProgressiveOneDecodes) {
+  const cv::Mat colour = cv::imread(test::sharedPath(kColour), cv::IMREAD_COLOR);
+  ASSERT_FALSE(colour.empty());
+  std::vector<uint8_t> progressive;
+  ASSERT_TRUE(cv::imencode(".jpg", colour, progressive, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+  EncodedImage jpeg{640, 480, ImageEncoding::kJpeg, PixelFormat::kBgr8, progressive};
+  EXPECT_EQ(decodeImage(jpeg).size(), colour.size());
+  // One of its scans again and again before the end marker, as a hostile publisher might.
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i + 1 < progressive.size(); ++i)
+    if (progressive[i] == 0xFF && progressive[i + 1] == 0xDA) starts.push_back(i);
+  ASSERT_GE(starts.size(), 3u);
+  const std::vector<uint8_t> scan(progressive.begin() + static_cast<std::ptrdiff_t>(starts[1]),
+                                  progressive.begin() + static_cast<std::ptrdiff_t>(starts[2]));
+  jpeg.data.assign(progressive.begin(), progressive.end() - 2);
+  for (int k = 0; k < 100; ++k) jpeg.data.insert(jpeg.data.end(), scan.begin(), scan.end());
+  jpeg.data.insert(jpeg.data.end(), {0xFF, 0xD9});
+  const std::string why = decodeError(jpeg);
+  EXPECT_NE(why.find("scans, more than 64 (not decoded)"), std::string::npos) << why;
+}
+
 // OpenCV throws its own exception for some headers (here: over its pixel limit) instead of failing; the
 // caller still gets an ImageError, so a process that skips bad frames skips this one too.
 TEST(ImageCodec, OpenCvsOwnRefusalIsAnImageError) {
