@@ -13,13 +13,26 @@ void eraseOtherStamps(Map& by_key, int64_t seq, int64_t utime) {
     it = it->first.second == utime ? std::next(it) : by_key.erase(it);
 }
 
+// Removes the entries of seq above `seq`; returns how many.
+template <typename Map>
+std::size_t eraseAbove(Map& by_key, int64_t seq) {
+  const auto first = by_key.upper_bound({seq, INT64_MAX});
+  const auto n = static_cast<std::size_t>(std::distance(first, by_key.end()));
+  by_key.erase(first, by_key.end());
+  return n;
+}
+
 }  // namespace
 
 void DetectionBook::frameHeard(int64_t seq, int64_t utime) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  // Frames are heard in seq order but for a restarted capture (seq from 0 again): the old stream's are
-  // forgotten, or the newest would be the first pushed out below.
-  if (!heard_.empty() && seq < heard_.rbegin()->first) heard_.clear();
+  // Frames are heard in seq order but for a restarted capture (seq from 0 again): the old stream's frames
+  // and answers are forgotten, or the new stream's, lowest in seq, would be the first pushed out below.
+  if (!heard_.empty() && seq < heard_.rbegin()->first) {
+    heard_.clear();
+    discarded_ += static_cast<int64_t>(eraseAbove(by_frame_, seq));
+    eraseAbove(recent_, seq);
+  }
   heard_[seq] = utime;
   while (heard_.size() > capacity_) heard_.erase(heard_.begin());
   eraseOtherStamps(by_frame_, seq, utime);

@@ -119,6 +119,25 @@ TEST(DetectionBook, AfterACaptureRestartTheNewFramesAreTheHeardOnes) {
   EXPECT_EQ(book.add(105, answer(1, 1)), "") << "the old stream's frames are forgotten";
 }
 
+// The old stream's answers, waiting unused (real time leaves many), go with its frames: the new stream's
+// answers, lower in seq, would otherwise be the first pushed out, and its stand-ins never found.
+TEST(DetectionBook, AfterACaptureRestartTheOldStreamsAnswersMakeRoomForTheNew) {
+  DetectionBook book(4);
+  for (int64_t seq = 100; seq < 110; ++seq) {
+    book.frameHeard(seq, seq * 1000);
+    book.add(seq, answer(seq * 1000, 1));
+  }
+  const int64_t pushed_out = book.discarded();
+  book.frameHeard(0, 7);
+  EXPECT_EQ(book.discarded(), pushed_out + 4) << "the old stream's 4 waiting answers, unused";
+  ASSERT_EQ(book.add(0, answer(7, 2)), "");
+  book.frameHeard(1, 8);
+  EXPECT_EQ(book.newestBefore(1, 0, 2).size(), 1u) << "frame 0's answer stands in for frame 1";
+  const auto taken = book.take(0, 7, kNoWait);
+  ASSERT_TRUE(taken);
+  EXPECT_EQ(taken->boxes.size(), 2u);
+}
+
 // A flood of forged answers for frames not heard yet (varying stamps) holds at most kMaxPerSeq per seq, so
 // it cannot push out the real answers waiting in the book.
 TEST(DetectionBook, AFloodForOneFutureFrameIsBounded) {

@@ -61,7 +61,7 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
   ++received_;  // a repeat is not a frame of its own
   lost_before_ += verdict.lost_before;
   if (!verdict.ok) return refuse(msg, verdict);
-  newest_frame_seq_ = std::max(newest_frame_seq_, msg.seq);
+  newest_frame_seq_ = msg.seq;  // accepted: in order, or a restarted stream (lower seq) followed from here
   book_.frameHeard(msg.seq, msg.utime);
   queue_.push({msg, verdict});
 }
