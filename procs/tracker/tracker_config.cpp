@@ -208,6 +208,10 @@ DynamicOptions dynamicOptions(const Config& c) {
   readFraction(c, "unmatched_prior", o.unmatched_prior);
   readFraction(c, "threshold", o.threshold);
   c.check(o.lambda + o.omega > 1.0, "omega", "with lambda must exceed 1 (else a box says nothing)");
+  // A likelihood of 1 makes the other observation's 0: one observation would fix the probability for good,
+  // and a late box could not withdraw its stand-in's.
+  c.check(o.lambda < 1.0, "lambda", "must be below 1");
+  c.check(o.omega < 1.0, "omega", "must be below 1");
   readFraction(c, "medium_held_overlap", o.medium_held_overlap);
   readFraction(c, "medium_moving_keypoints", o.medium_moving_keypoints);
   readIn(c, "refine_core_fraction", o.refine_core_fraction, 0.05, 1.0);
@@ -217,6 +221,8 @@ DynamicOptions dynamicOptions(const Config& c) {
   readFraction(c, "geo_lambda", o.geo_lambda);
   readFraction(c, "geo_omega", o.geo_omega);
   c.check(o.geo_lambda + o.geo_omega > 1.0, "geo_omega", "with geo_lambda must exceed 1");
+  c.check(o.geo_lambda < 1.0, "geo_lambda", "must be below 1");
+  c.check(o.geo_omega < 1.0, "geo_omega", "must be below 1");
   readIn(c, "geo_transition", o.geo_transition, 0.0, 0.5);
   readAtLeast(c, "neighbour_radius_px", o.neighbour_radius_px, 0.0);
   readPositive(c, "neighbour_depth_m", o.neighbour_depth_m);

@@ -260,6 +260,10 @@ TEST(TrackerConfigYaml, EverySectionRefusesAValueOutOfRangeNamingFileAndKey) {
       {"dynamic: {threshold: -1}", "dynamic.threshold"},
       {"dynamic: {refine_band_m: 0}", "dynamic.refine_band_m"},
       {"dynamic: {geo_lambda: 0.2, geo_omega: 0.3}", "dynamic.geo_omega"},
+      {"dynamic: {lambda: 1}", "dynamic.lambda"},  // certainty: one observation would fix it for good
+      {"dynamic: {omega: 1}", "dynamic.omega"},
+      {"dynamic: {geo_lambda: 1}", "dynamic.geo_lambda"},
+      {"dynamic: {geo_omega: 1}", "dynamic.geo_omega"},
   };
   for (const auto& [yaml, key] : bad) {
     const std::string msg = messageOf(yaml);
