@@ -1,5 +1,6 @@
 #include "tracker/detection_book.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <iterator>
 
@@ -20,6 +21,14 @@ std::size_t eraseAbove(Map& by_key, int64_t seq) {
   const auto n = static_cast<std::size_t>(std::distance(first, by_key.end()));
   by_key.erase(first, by_key.end());
   return n;
+}
+
+bool sameAnswer(const FrameBoxes& a, const FrameBoxes& b) {
+  const auto same = [](const ObjectBox& x, const ObjectBox& y) {
+    return x.box == y.box && x.level == y.level && x.class_id == y.class_id && x.score == y.score;
+  };
+  return a.usable == b.usable && a.boxes.size() == b.boxes.size() &&
+         std::equal(a.boxes.begin(), a.boxes.end(), b.boxes.begin(), same);
 }
 
 }  // namespace
@@ -52,7 +61,14 @@ std::string DetectionBook::add(int64_t seq, FrameBoxes boxes) {
     if (waiting >= kMaxPerSeq && by_frame_.count({seq, utime}) == 0)
       return "frame " + std::to_string(seq) + " already has " + std::to_string(waiting) +
              " answers waiting with other stamps";
-    if (boxes.usable) {
+    // The first answer stands: a second one would hide the boxes of the first. The same answer again is
+    // the detector answering a frame lockstep capture sent again.
+    if (const auto waiting_one = by_frame_.find({seq, utime}); waiting_one != by_frame_.end())
+      return sameAnswer(waiting_one->second, boxes)
+                 ? ""
+                 : "a second, different answer for frame " + std::to_string(seq) + "; the first kept";
+    // Stand-ins only from frames heard: answers for frames to come (forged) would push the real ones out.
+    if (boxes.usable && heard_.count(seq) > 0) {
       recent_[{seq, utime}] = boxes;
       while (recent_.size() > kRecent) recent_.erase(recent_.begin());
     }

@@ -36,8 +36,9 @@ class DetectionBook {
  public:
   explicit DetectionBook(std::size_t capacity = 256) : capacity_(capacity) {}
 
-  // Keeps the answer; or says why not (its frame was heard with another stamp, or its seq already holds
-  // kMaxPerSeq answers) and keeps nothing.
+  // Keeps the answer; or says why not (its frame was heard with another stamp, its seq already holds
+  // kMaxPerSeq answers, or a different answer for the frame is waiting: the first stands) and keeps
+  // nothing. The same answer again (for a frame capture sent again) is no news: "" and nothing changes.
   std::string add(int64_t seq, FrameBoxes boxes);
   // The frame (seq, utime) was received: other stamps for its seq are forgeries from here on.
   void frameHeard(int64_t seq, int64_t utime);
@@ -46,7 +47,8 @@ class DetectionBook {
   // removed.
   std::optional<FrameBoxes> take(int64_t seq, int64_t utime, std::chrono::milliseconds wait);
   // Copies of the n newest usable answers for frames before seq and at or after min_seq, newest first,
-  // whether or not their frames took them: the book remembers the last kRecent usable answers. An answer
+  // whether or not their frames took them: the book remembers the last kRecent usable answers for frames
+  // heard (answers for frames still to come may be forged, and would push the real ones out). An answer
   // not yet taken stays in the book for its own frame.
   std::vector<FrameBoxes> newestBefore(int64_t seq, int64_t min_seq, std::size_t n) const;
   static constexpr std::size_t kRecent = 4;

@@ -19,6 +19,12 @@ FrameBoxes answer(int64_t utime, int boxes) {
 
 constexpr std::chrono::milliseconds kNoWait{0};
 
+// The frame heard, then its answer, as the tracker node meets them.
+std::string hearAndAdd(DetectionBook& book, int64_t seq, FrameBoxes boxes) {
+  book.frameHeard(seq, boxes.utime);
+  return book.add(seq, std::move(boxes));
+}
+
 TEST(DetectionBook, AnswerIsTakenOnceForItsSeqAndStamp) {
   DetectionBook book;
   book.add(7, answer(7000, 2));
@@ -54,12 +60,12 @@ TEST(DetectionBook, KeepsOnlyTheNewestAnswersAndCountsTheRest) {
 // Real time: the newest usable answer before a frame stands in for its own, which it leaves in the book.
 TEST(DetectionBook, NewestBeforeAreCopiesOfTheNewestUsableEarlierAnswers) {
   DetectionBook book;
-  book.add(3, answer(3000, 1));
-  book.add(5, answer(5000, 2));
+  hearAndAdd(book, 3, answer(3000, 1));
+  hearAndAdd(book, 5, answer(5000, 2));
   FrameBoxes skipped = answer(6000, 0);
   skipped.usable = false;
-  book.add(6, skipped);
-  book.add(9, answer(9000, 4));  // after the frame: not a stand-in
+  hearAndAdd(book, 6, skipped);
+  hearAndAdd(book, 9, answer(9000, 4));  // after the frame: not a stand-in
   auto got = book.newestBefore(8, 0, 2);
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[0].utime, 5000) << "the skipped answer is no stand-in";
@@ -76,11 +82,30 @@ TEST(DetectionBook, NewestBeforeAreCopiesOfTheNewestUsableEarlierAnswers) {
 // The stand-ins are remembered for the last few answers only: memory stays bounded however long the run.
 TEST(DetectionBook, RemembersOnlyTheNewestAnswersAsStandIns) {
   DetectionBook book;
-  for (int64_t seq = 1; seq <= 10; ++seq) book.add(seq, answer(seq * 1000, 1));
+  for (int64_t seq = 1; seq <= 10; ++seq) hearAndAdd(book, seq, answer(seq * 1000, 1));
   const auto got = book.newestBefore(100, 0, 100);
   ASSERT_EQ(got.size(), DetectionBook::kRecent);
   EXPECT_EQ(got.front().utime, 10000);
   EXPECT_EQ(got.back().utime, static_cast<int64_t>(10 - DetectionBook::kRecent + 1) * 1000);
+}
+
+// Another publisher's answers: for frames still to come they wait for their frames but stand in for none,
+// so they cannot push the real stand-ins out; a second, different answer for a frame is refused, the first
+// kept; the same answer again (a frame capture sent again, answered again) changes nothing.
+TEST(DetectionBook, ForgedAnswersNeitherDisplaceStandInsNorReplaceTheFirst) {
+  DetectionBook book;
+  ASSERT_EQ(hearAndAdd(book, 5, answer(5000, 3)), "");
+  for (int64_t seq = 6; seq < 6 + static_cast<int64_t>(DetectionBook::kRecent); ++seq)
+    ASSERT_EQ(book.add(seq, answer(seq * 1000, 0)), "");
+  auto got = book.newestBefore(6, 0, 1);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].boxes.size(), 3u) << "frame 5's answer still stands in";
+  EXPECT_EQ(book.add(5, answer(5000, 3)), "") << "the same answer again";
+  EXPECT_NE(book.add(5, answer(5000, 0)), "") << "a different one";
+  const auto taken = book.take(5, 5000, kNoWait);
+  ASSERT_TRUE(taken);
+  EXPECT_EQ(taken->boxes.size(), 3u) << "the first answer kept";
+  EXPECT_FALSE(book.take(5, 5000, kNoWait)) << "once";
 }
 
 // Lockstep waits for the frame's answer; an answer that comes while it waits ends the wait.
