@@ -13,8 +13,11 @@ std::string checkCamera(const CameraIntrinsics& k) {
   const bool finite = std::isfinite(k.fx) && std::isfinite(k.fy) && std::isfinite(k.cx) &&
                       std::isfinite(k.cy) && std::isfinite(k.depth_scale);
   if (!finite) return "non-finite intrinsics";
-  for (double d : k.distortion)
+  for (double d : k.distortion) {
     if (!std::isfinite(d)) return "non-finite distortion";
+    if (std::abs(d) > kMaxDistortionCoefficient)
+      return "distortion coefficient " + std::to_string(d) + " too large";
+  }
   if (k.width <= 0 || k.height <= 0 || k.width > kMaxSide || k.height > kMaxSide)
     return "camera size " + std::to_string(k.width) + "x" + std::to_string(k.height) + " out of range";
   if (k.fx <= 0 || k.fy <= 0) return "focal lengths must be positive";

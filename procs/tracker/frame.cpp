@@ -73,10 +73,11 @@ std::shared_ptr<const Features> buildFeatures(OrbFeatures orb, const cv::Mat& de
       if (w <= 0.0f) f->excluded[i] = 1;
     }
     if (f->excluded[i]) continue;
-    const int col = static_cast<int>(std::floor((f->un[i].x() - g.min_x) / g.grid_cell_w));
-    const int row = static_cast<int>(std::floor((f->un[i].y() - g.min_y) / g.grid_cell_h));
+    // Compared before the cast: under a wild distortion model the point may be far off or not a number.
+    const double col = std::floor((f->un[i].x() - g.min_x) / g.grid_cell_w);
+    const double row = std::floor((f->un[i].y() - g.min_y) / g.grid_cell_h);
     if (col >= 0 && row >= 0 && col < FrameGeometry::kGridCols && row < FrameGeometry::kGridRows)
-      f->grid[row * FrameGeometry::kGridCols + col].push_back(i);
+      f->grid[static_cast<int>(row) * FrameGeometry::kGridCols + static_cast<int>(col)].push_back(i);
   }
   return f;
 }

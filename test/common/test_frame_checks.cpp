@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bmp/common/camera_model.hpp"
 #include "bmp/lcm/frame_checks.hpp"
 
 namespace bmp {
@@ -52,6 +53,12 @@ TEST(FrameChecks, UnusableCamerasAreRefusedWithTheReason) {
   f = frame(0);
   f.camera.distortion[2] = std::numeric_limits<double>::infinity();
   EXPECT_NE(checkFrame(f).find("distortion"), std::string::npos);
+  f = frame(0);
+  f.camera.distortion[0] = 1e300;  // finite, but undistortion diverges to infinity under it
+  EXPECT_NE(checkFrame(f).find("camera distortion coefficient"), std::string::npos) << checkFrame(f);
+  f = frame(0);
+  f.camera.distortion[4] = -kMaxDistortionCoefficient;  // strong, but a lens's
+  EXPECT_EQ(checkFrame(f), "");
   f = frame(0);
   f.camera.width = -3;
   EXPECT_NE(checkFrame(f).find("camera size"), std::string::npos);

@@ -78,6 +78,9 @@ TEST(MapperMessages, NonFinitePoseOrIntrinsics) {
   m = good();
   m.depth_scale = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(reasonOf(m).find("non-finite intrinsics"), std::string::npos) << reasonOf(m);
+  m = good();
+  m.camera.distortion[1] = -1e300;
+  EXPECT_NE(reasonOf(m).find("distortion coefficient"), std::string::npos) << reasonOf(m);
 }
 
 TEST(MapperMessages, PoseUpdatesAndOutgoingMessages) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "bmp/common/camera_model.hpp"
+
 namespace bmp {
 
 namespace {
@@ -15,8 +17,12 @@ std::string checkCamera(const camera_t& c) {
   if (c.fx <= 0 || c.fy <= 0) return "camera focal length fx/fy must be positive";
   if (c.cx < 0 || c.cy < 0 || c.cx > c.width || c.cy > c.height)
     return "camera principal point lies outside the image";
-  for (double d : c.distortion)
+  for (double d : c.distortion) {
     if (!std::isfinite(d)) return "camera distortion is not finite";
+    if (std::abs(d) > kMaxDistortionCoefficient)
+      return "camera distortion coefficient " + std::to_string(d) +
+             " is not a lens's (|k| <= " + std::to_string(static_cast<int>(kMaxDistortionCoefficient)) + ")";
+  }
   return "";
 }
 

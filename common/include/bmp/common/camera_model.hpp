@@ -17,6 +17,10 @@ struct CameraIntrinsics {
   double depth_scale = 5000.0;                      // raw depth units per metre
 };
 
+// The largest |coefficient| accepted in the distortion model: real lenses stay within a few units (wide
+// angles included); under much larger ones undistortion diverges to infinity.
+constexpr double kMaxDistortionCoefficient = 10.0;
+
 class CameraModel {
  public:
   explicit CameraModel(const CameraIntrinsics& intrinsics);
