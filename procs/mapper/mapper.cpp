@@ -47,8 +47,7 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
   ++map_revision_;
   Stopwatch watch;
   IntegrateResult result;
-  result.reason = checkKeyframe(kf);
-  if (result.reason.empty()) result.reason = checkPlace(kf.T_world_cam);
+  result.reason = refusalOfFirst(kf);
   if (result.reason.empty() && hasKeyframe(kf.id))
     result.reason = "a keyframe with this id was already mapped";
   if (!result.reason.empty()) return result;
@@ -104,6 +103,11 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
     ++result.applied;
   }
   return result;
+}
+
+std::string Mapper::refusalOfFirst(const KeyframeInput& kf) const {
+  std::string why = checkKeyframe(kf);
+  return why.empty() ? checkPlace(kf.T_world_cam) : why;
 }
 
 std::string Mapper::checkPlace(const SE3& T_world_cam) const {

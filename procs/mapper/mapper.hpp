@@ -48,6 +48,9 @@ class Mapper {
   // Maps one keyframe, or refuses it (reason in the result; nothing else changes): a keyframe that fails
   // checkKeyframe, or whose id was seen before.
   IntegrateResult integrate(const KeyframeInput& kf);
+  // Why a map of no keyframes yet would refuse kf (checkKeyframe, or a pose beyond world_radius_m), or "":
+  // asked before this map is dropped for another camera's.
+  std::string refusalOfFirst(const KeyframeInput& kf) const;
   // New poses of known keyframes: the cloud follows at once (on the next cloud()), the octree at the next
   // maintain() that is due. Updates for unknown ids or with invalid poses are refused one by one.
   PoseUpdateResult updatePoses(const std::vector<PoseUpdate>& updates);

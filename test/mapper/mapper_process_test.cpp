@@ -78,12 +78,19 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
 
   // A forged keyframe of another camera before the tracker's first: the real ones replace its camera, and
   // the map started with it is dropped. Once the real camera settled (3 keyframes), another is refused.
+  // Before it settled, another camera's keyframe that the new map would refuse (a pose 500 m away) is
+  // refused without dropping the real map.
   keyframe_t forged = test::keyframeMessage(test::wallKeyframe(500, test::translation(0, 0, 1.0), 3.02));
   forged.camera.fx *= 1.5;
   m.publish("SLAM_KEYFRAME", forged);
-  for (int id = 0; id < 3; ++id)
+  keyframe_t far = forged;
+  far.id = 502;
+  far.T_world_cam = toMsg(test::translation(500, 0, 0));
+  for (int id = 0; id < 3; ++id) {
     m.publish("SLAM_KEYFRAME",
               test::keyframeMessage(test::wallKeyframe(id, test::translation(0.2 * id, 0, 0), 3.02)));
+    if (id == 0) m.publish("SLAM_KEYFRAME", far);
+  }
   forged.id = 501;
   m.publish("SLAM_KEYFRAME", forged);
   keyframe_t corrupt = test::keyframeMessage(test::wallKeyframe(3, SE3::Identity(), 3.02));
@@ -96,18 +103,19 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   poses.T_world_cam = {toMsg(test::translation(0.5, 0, 0)), toMsg(SE3::Identity())};
   m.publish("SLAM_KEYFRAME_POSES", poses);
 
-  // 4 keyframes (the replaced one among them) and the pose message processed; the second forged keyframe,
-  // the corrupt one and the unknown id counted as malformed. The map holds the 3 real keyframes.
+  // 4 keyframes (the replaced one among them) and the pose message processed; the far one, the second
+  // forged keyframe, the corrupt one and the unknown id counted as malformed. The map holds the 3 real
+  // keyframes.
   ASSERT_TRUE(m.pumpUntil(
       [&] {
-        return m.status && m.status->processed >= 5 && m.status->malformed >= 3 &&
+        return m.status && m.status->processed >= 5 && m.status->malformed >= 4 &&
                m.status->message.find("keyframes 3") != std::string::npos;
       },
       20))
       << m.log();
-  EXPECT_EQ(m.status->received, 7);
+  EXPECT_EQ(m.status->received, 8);
   EXPECT_EQ(m.status->processed, 5);
-  EXPECT_EQ(m.status->malformed, 3);
+  EXPECT_EQ(m.status->malformed, 4);
   EXPECT_NE(m.status->message.find("keyframes 3"), std::string::npos) << m.status->message;
   EXPECT_NE(m.status->message.find("octree nodes"), std::string::npos) << m.status->message;
   ASSERT_TRUE(m.pumpUntil([&] { return m.grid.has_value(); }, 10));
@@ -125,6 +133,7 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
       std::string::npos)
       << log;
   EXPECT_NE(log.find("keyframe 501: camera changed mid-run"), std::string::npos) << log;
+  EXPECT_NE(log.find("keyframe 502: pose 500 m from the world origin"), std::string::npos) << log;
   EXPECT_NE(log.find("pose update for keyframe 99: unknown keyframe"), std::string::npos) << log;
   EXPECT_NE(log.find("map saved (SIGUSR1)"), std::string::npos) << log;
   EXPECT_NE(log.find("map saved (exit)"), std::string::npos) << log;

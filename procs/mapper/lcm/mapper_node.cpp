@@ -92,6 +92,8 @@ void MapperNode::onKeyframe(const keyframe_t& msg) {
   KeyframeInput kf;
   std::string why = fit == CameraPin::Fit::kRefused ? camera_.refusal(msg.camera, msg.depth_scale)
                                                     : keyframeFromMessage(msg, kf);
+  // A keyframe the new map would refuse must not drop the map it would replace.
+  if (why.empty() && fit != CameraPin::Fit::kSame) why = mapper_->refusalOfFirst(kf);
   if (why.empty() && fit != CameraPin::Fit::kSame) startMapWithCamera(msg);
   if (why.empty()) why = mapper_->integrate(kf).reason;
   if (!why.empty()) return refuse("keyframe " + std::to_string(msg.id) + ": " + why + "; skipped");
