@@ -202,6 +202,30 @@ TEST(FrameStream, AForgedFirstFrameDoesNotPinItsCamera) {
   EXPECT_EQ(s.camera()->width, frame(0).camera.width);
 }
 
+// Frames whose PNGs are only a signature and junk, with another camera, sent before the capture's first:
+// counted as used they would settle their camera and lock the real one out for the run. Until the camera
+// settles, each frame's images are walked whole, so these are refused and the real camera is the stream's.
+TEST(FrameStream, JunkFramesBeforeTheFirstDoNotSettleTheirCamera) {
+  FrameStream s;
+  for (int64_t seq = 0; seq < 8; ++seq) {
+    rgbd_frame_t junk = frame(100 + seq, 10, 6);
+    for (image_t* img : {&junk.color, &junk.depth}) {
+      img->encoding = image_t::ENCODING_PNG;
+      img->data = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 1, 2, 3, 4, 5, 6, 7, 8};
+      img->size = static_cast<int32_t>(img->data.size());
+    }
+    const auto v = s.accept(junk);
+    EXPECT_FALSE(v.ok);
+    EXPECT_NE(v.reason.find("colour image: PNG"), std::string::npos) << v.reason;
+  }
+  for (int64_t seq = 0; seq < 10; ++seq) {
+    const auto v = s.accept(frame(seq));
+    EXPECT_TRUE(v.ok && !v.new_camera) << seq << ": " << v.reason;
+  }
+  ASSERT_NE(s.camera(), nullptr);
+  EXPECT_EQ(s.camera()->width, frame(0).camera.width);
+}
+
 // One forged frame with an absurd seq or stamp must not make every later real frame look old.
 TEST(FrameStream, AForgedFrameCannotPoisonTheStream) {
   FrameStream s;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bmp/common/camera_model.hpp"
+#include "bmp/common/image_codec.hpp"
 
 namespace bmp {
 
@@ -54,6 +55,22 @@ std::string checkImage(const image_t& img, const camera_t& cam, int8_t pixel_for
       return "";
     default:
       return name + " image has unknown encoding " + std::to_string(img.encoding);
+  }
+}
+
+// Why an encoded image's structure is broken (truncated, bad CRC, no end marker) or its header's size is
+// not the declared one, or "". A whole walk over the bytes: asked only while the camera is unsettled.
+std::string structureProblem(const image_t& img, const char* what) {
+  if (img.encoding != image_t::ENCODING_PNG && img.encoding != image_t::ENCODING_JPEG) return "";
+  try {
+    const ImageProbe probe = probeEncodedImage(img.data);
+    if (probe.width != img.width || probe.height != img.height)
+      return std::string(what) + " image's header says " + std::to_string(probe.width) + "x" +
+             std::to_string(probe.height) + ", declared " + std::to_string(img.width) + "x" +
+             std::to_string(img.height);
+    return "";
+  } catch (const ImageError& e) {
+    return std::string(what) + " image: " + e.what();
   }
 }
 
@@ -136,6 +153,13 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
 
 FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   if (std::string why = checkFrame(msg); !why.empty()) return refuse(msg, why);
+  // Until the camera settles, each accepted frame counts towards keeping its camera for the run: a few
+  // frames of junk must not count (they would lock the real camera out), so their images are walked whole.
+  if (!camera_.settled()) {
+    std::string why = structureProblem(msg.color, "colour");
+    if (why.empty()) why = structureProblem(msg.depth, "depth");
+    if (!why.empty()) return refuse(msg, why);
+  }
   switch (camera_.fit(msg.camera, msg.depth_scale)) {
     case CameraPin::Fit::kFirst:
       return pin(msg, "");
