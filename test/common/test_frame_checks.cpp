@@ -258,6 +258,35 @@ TEST(FrameStream, SeqAndStampOutOfRangeAreRefusedAndCountNothing) {
   EXPECT_EQ(s.refused(), 2);
 }
 
+// One forged frame far ahead (seq + 9999, 333 s later, within the limits) must neither count 9998 frames as
+// lost nor get the real frames after it refused until the stream re-synchronises: when the next frame
+// follows the stream from before the jump, the jump is undone. A real pause (the next frame follows the
+// jump) keeps its count, and a frame merely reordered on the network is still refused.
+TEST(FrameStream, AFrameFarAheadIsUndoneWhenTheStreamGoesOnFromBeforeIt) {
+  FrameStream s;
+  for (int64_t seq = 0; seq < 10; ++seq) ASSERT_TRUE(s.accept(frame(seq)).ok);
+  const auto jumped = s.accept(frame(9 + 9999));
+  ASSERT_TRUE(jumped.ok);
+  EXPECT_EQ(jumped.lost_before, 9998);
+  const auto back = s.accept(frame(10));
+  EXPECT_TRUE(back.ok) << back.reason;
+  EXPECT_EQ(back.lost_before, -9998);
+  EXPECT_NE(back.reason.find("frame seq 10008 jumped ahead of the stream, which goes on from seq 9"),
+            std::string::npos)
+      << back.reason;
+  for (int64_t seq = 11; seq < 20; ++seq) EXPECT_TRUE(s.accept(frame(seq)).ok) << seq;
+  EXPECT_EQ(s.lostBefore(), 0);
+  EXPECT_EQ(s.refused(), 0);
+
+  ASSERT_TRUE(s.accept(frame(120)).ok);  // a real pause of 100 frames: the next follows it
+  EXPECT_TRUE(s.accept(frame(121)).ok);
+  EXPECT_FALSE(s.accept(frame(20)).ok) << "the jump stands once a frame followed it";
+  EXPECT_EQ(s.lostBefore(), 100);
+
+  ASSERT_TRUE(s.accept(frame(123)).ok);  // 122 comes after 123: reordered, refused as before
+  EXPECT_FALSE(s.accept(frame(122)).ok);
+}
+
 // A restarted capture plays from seq 0 again: followed after a few frames in order, not refused forever.
 TEST(FrameStream, ARestartedCaptureIsFollowedAfterAFewFrames) {
   FrameStreamLimits limits;

@@ -133,6 +133,11 @@ int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
   return gap;
 }
 
+bool FrameStream::isFarJump(const Position& from, const Position& to) const {
+  return to.seq - from.seq > limits_.provisional_jump_frames ||
+         static_cast<double>(to.utime - from.utime) > limits_.provisional_jump_s * 1e6;
+}
+
 FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
   if (accepted_ > 0 && msg.seq == last_.seq && msg.utime == last_.utime && checkFrame(msg).empty() &&
       camera_.fit(msg.camera, msg.depth_scale) == CameraPin::Fit::kSame) {
@@ -141,13 +146,19 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
     v.repeat = true;
     return v;
   }
+  const Position before = last_;
+  const bool first = accepted_ == 0;
   const int64_t gap = countGap(msg);
   Verdict v = decide(msg);
-  v.lost_before = gap;
+  v.lost_before += gap;
   if (v.new_camera) {  // a gap from the replaced camera's frames is not a loss of this stream's
     lost_before_ -= gap;
-    v.lost_before = 0;
+    v.lost_before -= gap;
   }
+  if (v.ok && !v.new_camera && !first && isFarJump(before, last_))
+    jump_ = Jump{before, gap};
+  else if (v.ok)
+    jump_.reset();
   return v;
 }
 
@@ -177,6 +188,19 @@ FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   const Position next{msg.seq, msg.utime};
   const std::string why = orderProblem(last_, next);
   if (why.empty()) return take(msg, "");
+  if (jump_ && orderProblem(jump_->from, next).empty()) {
+    // The stream goes on from before the jump: the frame that jumped was another publisher's. Its gap
+    // was no loss; the frames between where the stream was and this one are.
+    const Jump jump = *jump_;
+    const int64_t lost = next.seq - jump.from.seq - 1;
+    lost_before_ += lost - jump.counted_lost;
+    seen_seq_ = next.seq;
+    Verdict v = take(msg, "frame seq " + std::to_string(last_.seq) +
+                              " jumped ahead of the stream, which goes on from seq " +
+                              std::to_string(jump.from.seq) + ": taken as another publisher's");
+    v.lost_before = lost - jump.counted_lost;
+    return v;
+  }
   // Out of order: a forged frame, or the first frames of a restarted capture. Only a run of frames in
   // order among themselves is followed.
   candidate_run_ = (candidate_run_ > 0 && orderProblem(candidate_, next).empty()) ? candidate_run_ + 1 : 1;

@@ -30,6 +30,11 @@ struct FrameStreamLimits {
   int64_t max_seq_gap = 10000;     // frames; a 3 s pause at 30 Hz is 90
   double max_stamp_gap_s = 600.0;  // seconds between consecutive accepted frames
   int resync_frames = 5;           // consecutive, mutually ordered frames that start a new stream
+  // A frame this far ahead of the last (seq or stamp) is provisional: when the next frame follows the last
+  // instead, the jump was another publisher's, and the stream goes on at once, its count of lost frames
+  // mended. Nearer jumps stay final, as frames merely reordered on the network go no further back.
+  int64_t provisional_jump_frames = 30;
+  double provisional_jump_s = 1.0;
   // Frames accepted with one camera before it is kept for the run. Until then a frame from another camera
   // replaces it: one forged frame before the capture's first must not lock every real frame out.
   int settle_frames = 5;
@@ -90,6 +95,14 @@ class FrameStream {
   Position last_;                    // the last accepted frame
   std::optional<int64_t> seen_seq_;  // the highest plausible seq received, accepted or refused
   Position candidate_;               // the newest out-of-order frame, which may be a restarted capture's
+  // The last frame accepted jumped far ahead: where the stream was before it, and the frames counted as
+  // lost for it.
+  struct Jump {
+    Position from;
+    int64_t counted_lost = 0;
+  };
+  std::optional<Jump> jump_;
+  bool isFarJump(const Position& from, const Position& to) const;
   int candidate_run_ = 0;
   int64_t accepted_ = 0, refused_ = 0, lost_before_ = 0, resyncs_ = 0, repeats_ = 0, camera_changes_ = 0;
 };
