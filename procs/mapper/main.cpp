@@ -2,6 +2,7 @@
 // on exit, on SIGUSR1 and at an interval. The algorithm is bmp::mapper::Mapper, its LCM side MapperNode.
 #include "bmp/lcm/process.hpp"
 #include "mapper/lcm/mapper_node.hpp"
+#include "mapper/map_files.hpp"
 #include "mapper/mapper_config.hpp"
 
 namespace {
@@ -23,12 +24,15 @@ int run(ProcessContext& ctx) {
   const mapper::MapperProcessSettings process =
       mapper::processSettingsFromConfig(ctx.config.section("process"));
   finishConfig(ctx);
+  // A folder that cannot be written is found now, not after the whole run when the map would be lost.
+  mapper::checkMapFolder(ctx.args.value("out"));
   mapper::MapperNode node(ctx, settings, process, ctx.args.value("out"));
   ctx.status.tick(true);
   node.run();
-  node.save("exit");  // every exit but a kill: what was mapped is on disk
+  // Every exit but a kill: what was mapped is on disk, or the exit status says it is not.
+  const bool saved = node.save("exit");
   ctx.status.finish();
-  return 0;
+  return saved ? 0 : 1;
 }
 
 }  // namespace

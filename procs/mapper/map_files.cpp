@@ -21,6 +21,16 @@ std::string png(const cv::Mat& image) {
 
 }  // namespace
 
+void checkMapFolder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw FileWriteError(dir + ": cannot create the map folder: " + ec.message());
+  const std::string probe = (fs::path(dir) / ".bmp-mapper-write-check").string();
+  writeFileAtomically(probe, "");  // throws FileWriteError naming the file, hence the folder
+  fs::remove(probe, ec);
+}
+
 std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper) {
   namespace fs = std::filesystem;
   std::error_code ec;

@@ -14,4 +14,8 @@ namespace bmp::mapper {
 // FileWriteError (bmp/common/atomic_file.hpp) naming the file that could not be written.
 std::vector<std::string> writeMapFiles(const std::string& dir, Mapper& mapper);
 
+// Creates dir if needed and writes (then removes) a file in it. Throws FileWriteError naming dir when either
+// fails: a start-up check, so an unwritable map folder stops the mapper before anything is mapped.
+void checkMapFolder(const std::string& dir);
+
 }  // namespace bmp::mapper

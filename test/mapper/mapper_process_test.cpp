@@ -146,5 +146,33 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   EXPECT_EQ(grid.at(wall.x(), wall.y()), plan::kOccupied);
 }
 
+// A map folder that cannot be made (a plain file in its place) stops the mapper at start-up, naming it,
+// instead of mapping a whole run and losing the map at exit.
+TEST(MapperProcess, UnwritableMapFolderFailsAtStartUp) {
+  const fs::path dir = bmp::test::scratchDir("mapper_unwritable");
+  std::ofstream(dir / "map") << "not a folder";
+  ChildProcess child(
+      {bmp::test::binPath("bmp-mapper"), "--config", bmp::test::sourceDir() + "/config/mapper.yaml",
+       "--lcm-url", "memq://", "--out", (dir / "map").string()},
+      ChildProcess::Output::kFile, (dir / "log").string());
+  const std::optional<int> status = child.wait(30);
+  const std::string log = bmp::test::readText((dir / "log").string());
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 1) << log;
+  EXPECT_NE(log.find((dir / "map").string() + ": cannot create the map folder"), std::string::npos) << log;
+}
+
+// The save at exit failing (the folder replaced by a file while it ran) is the mapper's failure: a run
+// that lost its map must not report success.
+TEST(MapperProcess, FailedSaveAtExitIsANonZeroExit) {
+  MapperUnderTest m;
+  ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
+  ASSERT_TRUE(m.child().running()) << m.log();
+  fs::remove_all(m.mapDir());
+  std::ofstream(m.mapDir()) << "not a folder";
+  EXPECT_EQ(m.child().stop(20.0), 1) << m.log();
+  EXPECT_NE(m.log().find("map not saved (exit)"), std::string::npos) << m.log();
+}
+
 }  // namespace
 }  // namespace bmp::mapper

@@ -146,15 +146,17 @@ void MapperNode::reportFloor() {
             " deg from grid.up, ", static_cast<int>(100 * floor->share), " % of the points");
 }
 
-void MapperNode::save(const std::string& why) {
+bool MapperNode::save(const std::string& why) {
   try {
     Stopwatch watch;
     const auto written = writeMapFiles(out_dir_, *mapper_);
     save_dirty_ = false;
     log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ",
               mapper_->cloud().size(), " points, ", static_cast<int>(watch.elapsedMs()), " ms");
+    return true;
   } catch (const FileWriteError& e) {
     log::error("map not saved (", why, "): ", e.what());
+    return false;
   }
 }
 

@@ -24,8 +24,9 @@ class MapperNode {
 
   // Until a stop is requested.
   void run();
-  // Writes every map file into the output folder; a failure is logged, never fatal (the map lives on).
-  void save(const std::string& why);
+  // Writes every map file into the output folder; returns false when it could not. A failure is logged,
+  // never fatal here (the map lives on); the last save decides the exit status.
+  bool save(const std::string& why);
 
  private:
   void onKeyframe(const keyframe_t& msg);
