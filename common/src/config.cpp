@@ -174,6 +174,20 @@ void Config::finish() const {
   throw ConfigError(message);
 }
 
+void Config::overridden(const std::string& key, const std::string& value_text,
+                        const std::string& source) const {
+  const std::string full = path(key);
+  state_->used.insert(full);
+  const std::string line = full + " = " + value_text + " (" + source + ")";
+  for (auto& entry : state_->effective) {
+    if (entry.rfind(full + " = ", 0) == 0) {
+      entry = line;
+      return;
+    }
+  }
+  state_->effective.push_back(line);
+}
+
 std::vector<std::string> Config::effectiveValues() const {
   return state_->effective;
 }

@@ -24,16 +24,21 @@ class Checker {
   const ArgParser& args_;
 };
 
-// The configured value, always read (so finish() accepts the key), unless the command line gives one.
+// The configured value, always read (so finish() accepts the key), unless the command line gives one; the
+// start-up log then shows the option's value, the one in use.
 std::string overridden(const Config& section, const ArgParser& args, const std::string& key,
                        const std::string& option, const std::string& fallback) {
   const std::string configured = section.get<std::string>(key, fallback);
-  return args.given(option) ? args.value(option) : configured;
+  if (!args.given(option)) return configured;
+  section.overridden(key, args.value(option), "--" + option);
+  return args.value(option);
 }
 double overridden(const Config& section, const ArgParser& args, const std::string& key,
                   const std::string& option, double fallback) {
   const double configured = section.get<double>(key, fallback);
-  return args.given(option) ? args.number(option) : configured;
+  if (!args.given(option)) return configured;
+  section.overridden(key, args.value(option), "--" + option);
+  return args.number(option);
 }
 
 template <typename Mode>
@@ -50,7 +55,12 @@ void readPlayerOptions(const Config& section, const ArgParser& args, const Check
   p.channel = section.get<std::string>("channel", p.channel);
   check(!p.channel.empty(), "channel", "", "must not be empty");
   p.ack_channels = section.get<std::vector<std::string>>("ack_channels", p.ack_channels);
-  if (args.given("ack-channels")) p.ack_channels = args.list("ack-channels");
+  if (args.given("ack-channels")) {
+    p.ack_channels = args.list("ack-channels");
+    std::string shown;
+    for (const auto& c : p.ack_channels) shown += (shown.empty() ? "" : ", ") + c;
+    section.overridden("ack_channels", "[" + shown + "]", "--ack-channels");
+  }
   const std::string mode = overridden(section, args, "mode", "mode", toString(p.mode));
   check(parses(parseRateMode, mode, p.mode), "mode", "mode",
         "must be realtime, fast or lockstep, got '" + mode + "'");

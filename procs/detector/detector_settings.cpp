@@ -37,6 +37,7 @@ DetectorSettings detectorSettingsFromConfig(const Config& config,
   s.detections_channel = channels.get<std::string>("detections", channels::kDetections);
 
   const std::string& chosen = mode_override ? *mode_override : mode;
+  if (mode_override) process.overridden("mode", *mode_override, "--mode");
   std::string mode_error;
   try {
     s.mode = parseQueueMode(chosen);

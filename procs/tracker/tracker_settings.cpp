@@ -40,8 +40,11 @@ void applyDynamicModeOption(const ArgParser& args, TrackerConfig& config) {
 
 namespace {
 
-void applyOptions(const ArgParser& args, TrackerSettings& s) {
+void applyOptions(const Config& config, const ArgParser& args, TrackerSettings& s) {
   applyDynamicModeOption(args, s.tracker);
+  if (args.given("dynamic-mode"))
+    config.section("tracker").section("dynamic").overridden("mode", args.value("dynamic-mode"),
+                                                            "--dynamic-mode");
   const std::string policy = args.value("frame-policy");
   if (policy != "every" && policy != "latest")
     throw ConfigError("--frame-policy: must be every or latest, got '" + policy + "'");
@@ -69,7 +72,7 @@ TrackerSettings trackerSettingsFromConfig(const Config& config, const ArgParser*
   process.check(d.keyframe_hold_ms >= 0, "keyframe_hold_ms", "must not be negative");
   d.degraded_inliers = process.get<int>("degraded_inliers", d.degraded_inliers);
   process.check(d.degraded_inliers >= 0, "degraded_inliers", "must not be negative");
-  if (args) applyOptions(*args, s);
+  if (args) applyOptions(config, *args, s);
   return s;
 }
 

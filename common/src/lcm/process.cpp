@@ -7,6 +7,7 @@
 #include <csignal>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include <bmp/process_status_t.hpp>
 
@@ -105,7 +106,13 @@ void StatusReporter::finish() {
 
 void finishConfig(const ProcessContext& context) {
   context.config.finish();
-  for (const auto& line : context.config.effectiveValues()) log::info("  config ", line);
+  const std::vector<std::string> values = context.config.effectiveValues();
+  if (context.args.flag("print-config")) {
+    for (const auto& line : values) std::cout << line << "\n";
+    std::cout << std::flush;
+    throw ConfigPrinted();
+  }
+  for (const auto& line : values) log::info("  config ", line);
 }
 
 namespace {
@@ -132,7 +139,8 @@ int runProcess(int argc, char** argv, const ProcessSpec& spec) {
   args.addOption("lcm-url", "URL",
                  "LCM provider URL; else $LCM_DEFAULT_URL, else " + std::string(kDefaultLcmUrl) +
                      " (a udpm URL without recv_buf_size gets the default size)");
-  args.addFlag("print-config", "print every effective configuration value at start-up");
+  args.addFlag("print-config",
+               "print every effective configuration value (options applied) and exit without starting");
   if (spec.add_options) spec.add_options(args);
   try {
     if (!args.parse(argc, argv)) {
@@ -160,6 +168,8 @@ int runProcess(int argc, char** argv, const ProcessSpec& spec) {
               stop.signalNumber() > 0 ? " on signal " + std::to_string(stop.signalNumber()) : "",
               ", exit code ", code);
     return code;
+  } catch (const ConfigPrinted&) {
+    return 0;
   } catch (const ConfigError& e) {
     log::error(spec.name, ": configuration error: ", e.what());
     return 2;

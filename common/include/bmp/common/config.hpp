@@ -43,7 +43,11 @@ class Config {
   void ignore(const std::string& key) const;
   // Throws ConfigError listing every key in the file that was never read.
   void finish() const;
-  // "path.to.key = value" for every value read, with "(default)" where the fallback was used.
+  // Records that a command-line option replaced key's value (read before with get()): effectiveValues()
+  // then shows value_text and source instead of the file's value, which the process does not use.
+  void overridden(const std::string& key, const std::string& value_text, const std::string& source) const;
+  // "path.to.key = value" for every value read, with "(default)" where the fallback was used and the
+  // option's name where one replaced it.
   std::vector<std::string> effectiveValues() const;
   const std::string& origin() const;
   std::string path(const std::string& key) const;  // full dotted key path, for messages

@@ -4,6 +4,7 @@
 // heartbeat. A main fills a ProcessSpec and hands it to runProcess().
 #include <atomic>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -81,8 +82,16 @@ struct ProcessSpec {
   std::function<int(ProcessContext&)> run;
 };
 
-// Rejects unknown keys (ConfigError) and logs every effective value: call once the process has read its
-// whole configuration, before it starts work.
+// Thrown by finishConfig under --print-config once the values are printed: runProcess then exits 0 before
+// the process starts work.
+class ConfigPrinted : public std::exception {
+ public:
+  const char* what() const noexcept override { return "configuration printed (--print-config)"; }
+};
+
+// Rejects unknown keys (ConfigError) and logs every effective value (command-line overrides applied): call
+// once the process has read its whole configuration and applied its options, before it starts work. Under
+// --print-config it prints them to stdout and throws ConfigPrinted.
 void finishConfig(const ProcessContext& context);
 
 // Exit codes: 0 success, 1 runtime failure, 2 bad arguments or configuration.
