@@ -58,5 +58,11 @@ TEST(LaunchPlan, UnknownRunKeyIsRefused) {
   EXPECT_THROW(c.finish(), ConfigError);
 }
 
+TEST(LaunchPlan, UnknownModeIsRefused) {
+  EXPECT_THROW(settingsFrom("run:\n  mode: slow\n"), ConfigError);
+  EXPECT_TRUE(isCaptureMode("fast"));
+  EXPECT_FALSE(isCaptureMode("bogus"));
+}
+
 }  // namespace
 }  // namespace bmp::launcher

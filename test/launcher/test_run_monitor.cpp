@@ -164,6 +164,10 @@ TEST(RunMonitor, NothingHeardIsAnEmptySummary) {
   EXPECT_EQ(s.poses, 0);
   EXPECT_TRUE(std::isnan(s.answered_per_second()));
   EXPECT_NE(formatSummaryJson(s).find("\"frames_per_second\": null"), std::string::npos);
+  // The printed summary is for people: no JSON null there (a run that stopped before two poses).
+  const std::string text = formatSummaryText(s);
+  EXPECT_EQ(text.find("null"), std::string::npos) << text;
+  EXPECT_NE(text.find("end to end: - (fewer than two poses)"), std::string::npos) << text;
 }
 
 }  // namespace

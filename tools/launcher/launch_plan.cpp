@@ -18,10 +18,15 @@ std::string expand(std::string text, const RunRequest& request, const std::strin
 }
 }  // namespace
 
+bool isCaptureMode(const std::string& mode) {
+  return mode == "lockstep" || mode == "realtime" || mode == "fast";
+}
+
 RunSettings runSettingsFromConfig(const Config& c) {
   RunSettings s;
   s.output_root = c.get<std::string>("output_root", s.output_root);
   s.mode = c.get<std::string>("mode", s.mode);
+  c.check(isCaptureMode(s.mode), "mode", "must be lockstep, realtime or fast, got '" + s.mode + "'");
   s.stop_timeout_s = c.get<double>("stop_timeout_s", s.stop_timeout_s);
   s.drain_s = c.get<double>("drain_s", s.drain_s);
   s.evaluate = c.get<bool>("evaluate", s.evaluate);

@@ -39,6 +39,9 @@ struct RunSettings {
   std::vector<std::string> capture_args;
 };
 
+// lockstep, realtime or fast: the capture modes a run may ask for.
+bool isCaptureMode(const std::string& mode);
+
 // Reads the "run" section. Placeholders in arguments, expanded by makePlan: {out} the run folder, {dataset}
 // the dataset folder, {frame_policy} "every" in lockstep mode and "latest" otherwise.
 RunSettings runSettingsFromConfig(const Config& run_section);

@@ -83,8 +83,12 @@ std::string formatSummaryText(const RunSummary& s) {
         << number(s.position_std_mm.p95(), 1) << " mm (how well each frame's keypoints pin it)\n";
   out << "  detector:  " << s.detections << " frames answered, " << s.detections_skipped << " skipped; "
       << textTiming(s.detector_ms) << "\n";
-  out << "  end to end: " << number(s.answered_per_second(), 1)
-      << " frames/s (pose to pose: " << textTiming(s.frame_period_ms) << ")\n";
+  // Two poses at least make a pace; fewer (a run that stopped at once) have none to show.
+  if (s.frame_period_ms.empty())
+    out << "  end to end: - (fewer than two poses)\n";
+  else
+    out << "  end to end: " << number(s.answered_per_second(), 1)
+        << " frames/s (pose to pose: " << textTiming(s.frame_period_ms) << ")\n";
   if (!s.processes.empty()) out << "frames per process (from each one's last heartbeat)\n";
   for (const auto& [label, p] : labelled(s)) out << textProcess(label, *p);
   return out.str();

@@ -1,6 +1,7 @@
 #include "launcher/run_session.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -61,16 +62,33 @@ std::unique_ptr<ChildProcess> start(const ProcessCommand& cmd, const fs::path& l
   return child;
 }
 
+// A usage error naming the option: nothing has started and no folder was made when it is thrown.
+void require(bool ok, const ArgParser& args, const std::string& option, const std::string& rule) {
+  if (!ok) throw ArgError("bmp-run: --" + option + " '" + args.value(option) + "': " + rule);
+}
+
+// Every option checked before anything starts: a run that cannot be what was asked must not begin.
 RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   RunRequest request;
   request.dataset = args.value("dataset");
-  if (!request.dataset.empty() && !fs::is_directory(request.dataset))
-    throw std::runtime_error(request.dataset + ": no such dataset folder");
+  require(request.dataset.empty() || fs::is_directory(request.dataset), args, "dataset", "no such folder");
   request.camera = args.value("camera");
+  require(request.camera.empty() || fs::is_regular_file(request.camera), args, "camera", "no such file");
   request.mode = args.value("mode");
+  require(!args.given("mode") || isCaptureMode(request.mode), args, "mode",
+          "must be lockstep, realtime or fast");
   request.speed = args.value("speed");
+  if (args.given("speed")) {
+    const double speed = args.number("speed");
+    require(std::isfinite(speed) && speed > 0, args, "speed", "must be a positive number");
+  }
   request.frames = args.given("frames") ? args.integer("frames") : -1;
+  require(!args.given("frames") || request.frames >= 1, args, "frames", "must be at least 1");
   request.loops = args.value("loop");
+  if (args.given("loop")) {
+    const long long loops = args.integer("loop");
+    require(loops >= 1 && loops <= 1000000, args, "loop", "must be between 1 and 1000000");
+  }
   request.lcm_url = resolveLcmUrl(args.value("lcm-url"));
   request.bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   request.out_dir = args.given("out")
