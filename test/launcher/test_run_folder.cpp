@@ -4,45 +4,57 @@
 #include <fstream>
 #include <string>
 
+#include "bmp/common/arg_parser.hpp"
 #include "launcher/run_folder.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::launcher {
 namespace {
 
-void writeText(const std::filesystem::path& path, const std::string& text) {
+namespace fs = std::filesystem;
+
+void writeText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
   std::ofstream(path) << text;
 }
 
-std::string readText(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+// A second run into the same --out used to keep only some files as .prev and overwrite the rest (map/,
+// frames.tsv, logs/), so after a good run and two failed ones the good map was gone, and new files sat
+// beside old ones. Now the earlier run moves as a whole into previous/, replacing the one kept before.
+TEST(RunFolder, AnEarlierRunMovesWhollyIntoPrevious) {
+  const fs::path dir = test::scratchDir("run_folder_earlier");
+  writeText(dir / "logs" / "bmp-tracker.log", "second run");
+  writeText(dir / "trajectory.txt", "second run's poses");
+  writeText(dir / "map" / "map.pcd", "second run's map");
+  writeText(dir / "frames.tsv", "second run's frames");
+  writeText(dir / "eval.json", "{\"ate\": 1}");
+  writeText(dir / "previous" / "trajectory.txt", "first run's poses");
+
+  EXPECT_TRUE(setAsideEarlierRun(dir.string()));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // previous/ alone
+  EXPECT_EQ(test::readText((dir / "previous" / "trajectory.txt").string()), "second run's poses");
+  EXPECT_EQ(test::readText((dir / "previous" / "map" / "map.pcd").string()), "second run's map");
+  EXPECT_EQ(test::readText((dir / "previous" / "frames.tsv").string()), "second run's frames");
+  EXPECT_TRUE(fs::exists(dir / "previous" / "logs" / "bmp-tracker.log"));
+  EXPECT_TRUE(fs::exists(dir / "previous" / "eval.json"));
+  EXPECT_FALSE(fs::exists(dir / "previous" / "previous"));  // one earlier run is kept, not a chain
 }
 
-// A second run into the same --out folder, of a sequence without ground truth, used to be evaluated against
-// the first run's groundtruth.txt (a failed run, or a wrong ATE where the stamps overlapped) and left its
-// eval.json and plots beside the new trajectory. They are set aside as .prev; other files stay.
-TEST(RunFolder, AnEarlierRunsResultsAreSetAsideAsPrev) {
-  namespace fs = std::filesystem;
-  const fs::path dir = test::scratchDir("run_folder_earlier");
-  writeText(dir / "groundtruth.txt", "1 0 0 0 0 0 0 1\n");
-  writeText(dir / "eval.json", "{\"ate\": 1}");
-  fs::create_directories(dir / "plots");
-  writeText(dir / "plots" / "trajectory.png", "png");
-  writeText(dir / "eval.json.prev", "older");
-  writeText(dir / "trajectory.txt", "kept by its writer");
+TEST(RunFolder, NewOrEmptyFolderHasNothingToMove) {
+  const fs::path dir = test::scratchDir("run_folder_new");
+  EXPECT_FALSE(setAsideEarlierRun((dir / "missing").string()));
+  EXPECT_FALSE(setAsideEarlierRun(dir.string()));
+  EXPECT_FALSE(fs::exists(dir / "previous"));
+}
 
-  const auto moved = setAsideEarlierResults(dir.string());
-  EXPECT_EQ(moved, (std::vector<std::string>{"groundtruth.txt", "eval.json", "plots"}));
-  EXPECT_FALSE(fs::exists(dir / "groundtruth.txt"));
-  EXPECT_FALSE(fs::exists(dir / "eval.json"));
-  EXPECT_FALSE(fs::exists(dir / "plots"));
-  EXPECT_EQ(readText(dir / "groundtruth.txt.prev"), "1 0 0 0 0 0 0 1\n");
-  EXPECT_EQ(readText(dir / "eval.json.prev"), "{\"ate\": 1}");  // the older .prev replaced
-  EXPECT_TRUE(fs::exists(dir / "plots.prev" / "trajectory.png"));
-  EXPECT_EQ(readText(dir / "trajectory.txt"), "kept by its writer");
-
-  EXPECT_TRUE(setAsideEarlierResults(dir.string()).empty());  // nothing left to set aside
+// A folder no run wrote (--out ~ by mistake) is refused as a usage error and left untouched.
+TEST(RunFolder, FolderThatIsNotARunsIsRefused) {
+  const fs::path dir = test::scratchDir("run_folder_foreign");
+  writeText(dir / "notes.txt", "mine");
+  EXPECT_THROW(setAsideEarlierRun(dir.string()), ArgError);
+  EXPECT_EQ(test::readText((dir / "notes.txt").string()), "mine");
+  EXPECT_FALSE(fs::exists(dir / "previous"));
+  EXPECT_THROW(setAsideEarlierRun((dir / "notes.txt").string()), ArgError);  // a file, not a folder
 }
 
 }  // namespace

@@ -15,7 +15,9 @@ int main(int argc, char** argv) {
   args.addOption("dataset", "DIR", "TUM-format folder; without it the built-in synthetic scene plays");
   args.addOption("camera", "FILE", "camera YAML for the dataset (default: chosen by bmp-capture)");
   args.addOption("config", "FILE", "run configuration", bmp::configDir() + "/run.yaml");
-  args.addOption("out", "DIR", "run folder (default: <output_root>/<time>_<sequence>, linked as latest)");
+  args.addOption("out", "DIR",
+                 "run folder (default: <output_root>/<time>_<sequence>, linked as latest); an earlier run "
+                 "there moves into DIR/previous/");
   args.addOption("mode", "MODE", "capture mode: lockstep | realtime | fast (default: run.mode)");
   args.addOption("speed", "X", "realtime mode: recorded rate x X");
   args.addOption("frames", "N", "play only the first N frames");

@@ -101,9 +101,10 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
 // --out) is also linked as <output_root>/latest. Returns the logs folder.
 fs::path prepareRunFolder(RunRequest& request, const RunSettings& settings, bool link_latest) {
   const fs::path logs = fs::path(request.out_dir) / "logs";
+  if (setAsideEarlierRun(request.out_dir))
+    log::info("the earlier run in ", request.out_dir, " is kept in ",
+              (fs::path(request.out_dir) / kPreviousRunFolder).string(), " (replacing the one kept there)");
   fs::create_directories(logs);
-  for (const std::string& name : setAsideEarlierResults(request.out_dir))
-    log::info("an earlier run's ", name, " in this folder is kept as ", name, ".prev");
   if (link_latest) {
     const fs::path latest = fs::path(settings.output_root) / "latest";
     std::error_code ignored;
