@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   args.addFlag("no-eval", "do not evaluate");
   args.addEpilog(
       "Outputs in the run folder: trajectory.txt (TUM), groundtruth.txt, eval.json, plots/*.png,\n"
-      "logs/<process>.log. Exit status is non-zero if any process failed.\n");
+      "logs/<process>.log. Exit status: 0 success, 1 a process or the evaluation failed, 2 a bad option\n"
+      "(nothing started), 130 stopped by Ctrl-C (143 by SIGTERM).\n");
   return bmp::runTool(args, argc, argv, bmp::launcher::runSession);
 }

@@ -128,17 +128,20 @@ void startProcesses(Session& s, const LaunchPlan& plan) {
 }
 
 // Until capture ends. An interrupt, or another process ending early, asks capture to stop (SIGINT), so the
-// run winds down the normal way.
+// run winds down the normal way. A process ending after the user's interrupt is no failure: Ctrl-C in a
+// terminal reaches every process of the run at once.
 void superviseCapture(Session& s) {
   bool failed_early = false;
+  bool interrupt_seen = false;
   while (s.capture.child->running()) {
     s.relay.pump(100);
-    if (s.stop.requested()) {
-      log::warn("interrupted: stopping the run");
+    if (s.stop.requested() && !interrupt_seen) {
+      interrupt_seen = true;
+      log::warn("interrupted by the user: stopping the run");
       s.capture.child->signal(SIGINT);
     }
     for (auto& p : s.launched) {
-      if (!p.child->running() && !failed_early) {
+      if (!p.child->running() && !failed_early && !s.stop.requested()) {
         log::error(p.name, " ended early with status ", *p.child->exitStatus(), "; see ",
                    (s.logs / (p.name + ".log")).string());
         failed_early = true;
@@ -159,6 +162,7 @@ int stopOthers(Session& s, const RunSettings& settings) {
     log::info(name, " exited with status ", status);
     if (status != 0) worst = 1;
   };
+  // Stopped by the user, each process still gets its SIGINT and its time to write what it owes.
   record(s.capture.name, *s.capture.child->exitStatus());
   for (auto& p : s.launched) p.child->signal(SIGINT);
   for (auto& p : s.launched) {
@@ -199,8 +203,21 @@ int evaluate(const LaunchPlan& plan, const RunRequest& request, OutputRelay& rel
   return child->wait(60).value_or(1);
 }
 
-// Returns the run's exit status given the processes' (worst): a failed evaluation fails the run.
+// The conventional status of a process stopped by a signal: 130 for SIGINT, 143 for SIGTERM.
+int interruptedStatus(const StopSignal& stop) {
+  return 128 + (stop.signalNumber() > 0 ? stop.signalNumber() : SIGINT);
+}
+
+// Returns the run's exit status given the processes' (worst): a failed evaluation fails the run. A run the
+// user stopped evaluates what was tracked and keeps the interrupt's status, whatever the processes said.
 int evaluateRun(Session& s, const LaunchPlan& plan, const RunRequest& request, int worst) {
+  if (s.stop.requested()) {
+    if (fs::exists(plan.trajectory_path)) {
+      log::info("stopped by the user: evaluating the poses written up to the interrupt");
+      evaluate(plan, request, s.relay, s.logs);
+    }
+    return interruptedStatus(s.stop);
+  }
   if (worst == 0) return evaluate(plan, request, s.relay, s.logs) != 0 ? 1 : 0;
   if (fs::exists(plan.trajectory_path)) {
     // What was tracked before the failure is still worth a look; the run stays failed.
@@ -251,10 +268,15 @@ int runSession(const ArgParser& args) {
 
   const RunSummary summary = finalSummary(session, 1.0);
   writeSummaryFile((fs::path(request.out_dir) / "summary.json").string(), formatSummaryJson(summary));
-  if (settings.evaluate && !args.flag("no-eval")) worst = evaluateRun(session, plan, request, worst);
+  if (settings.evaluate && !args.flag("no-eval"))
+    worst = evaluateRun(session, plan, request, worst);
+  else if (session.stop.requested())
+    worst = interruptedStatus(session.stop);
   std::cout << formatSummaryText(summary) << std::flush;  // last, where the eye lands
-  log::info(worst == 0 ? "run finished: " : "run FAILED: ", request.out_dir, " (logs in ", logs.string(),
-            ")");
+  const char* verdict = session.stop.requested() ? "run stopped by the user: "
+                        : worst == 0             ? "run finished: "
+                                                 : "run FAILED: ";
+  log::info(verdict, request.out_dir, " (logs in ", logs.string(), ")");
   return worst;
 }
 

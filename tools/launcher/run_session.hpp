@@ -6,8 +6,9 @@
 namespace bmp::launcher {
 
 // args: bmp-run's options (see main.cpp). Returns the exit status: 0 when every process and the evaluation
-// succeeded, else 1. Throws (ConfigError, std::runtime_error) for what stops a run before anything starts:
-// a bad configuration, a missing dataset folder, an executable not built.
+// succeeded, 128 + the signal when the user stopped the run (130 for Ctrl-C), else 1. Throws (ArgError,
+// ConfigError, std::runtime_error) for what stops a run before anything starts: a bad option, a bad
+// configuration, an executable not built.
 int runSession(const ArgParser& args);
 
 }  // namespace bmp::launcher

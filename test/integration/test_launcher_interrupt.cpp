@@ -1,0 +1,83 @@
+// Ctrl-C on bmp-run: the run is stopped by the user, not failed. What was tracked is kept and evaluated,
+// and bmp-run exits 130 as a shell expects of an interrupted command.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "bmp/common/child_process.hpp"
+#include "bmp/common/tum_trajectory.hpp"
+#include "integration_support.hpp"
+
+namespace bmp {
+namespace {
+
+namespace fs = std::filesystem;
+using test::binPath;
+
+// The pid of a running `name` whose command line mentions marker, or -1.
+pid_t findProcess(const std::string& name, const std::string& marker) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = test::readText((entry.path() / "cmdline").string());
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find("/" + name + " ") != std::string::npos && cmdline.find(marker) != std::string::npos)
+      return static_cast<pid_t>(std::stol(pid));
+  }
+  return -1;
+}
+
+std::size_t poses(const fs::path& trajectory) {
+  try {
+    return fs::exists(trajectory) ? readTumTrajectory(trajectory.string()).size() : 0;
+  } catch (const TrajectoryError&) {
+    return 0;  // a line being written
+  }
+}
+
+// A terminal's Ctrl-C reaches bmp-run and every process of the run: sent here to each, bmp-run first.
+TEST(LauncherInterrupt, CtrlCStopsTheRunWithoutCallingItFailed) {
+  const fs::path dir = test::scratchDir("launcher_interrupt");
+  std::ofstream(dir / "run.yaml")
+      << "run:\n  output_root: " << (dir / "root").string()
+      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
+      << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\", --frame-policy, every]\n"
+      << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+  const fs::path out = dir / "run";
+  const fs::path log = dir / "bmp-run.log";
+  ChildProcess run({binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset", test::bonnDir(),
+                    "--frames", "400", "--out", out.string(), "--lcm-url", test::uniqueLcmUrl(12)},
+                   ChildProcess::Output::kFile, log.string());
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+  while (poses(out / "trajectory.txt") < 20 && run.running() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_GE(poses(out / "trajectory.txt"), 20u) << test::readText(log.string());
+  const pid_t tracker = findProcess("bmp-tracker", out.string());
+  const pid_t capture = findProcess("bmp-capture", out.string());
+  ASSERT_GT(tracker, 0);
+  ASSERT_GT(capture, 0);
+  run.signal(SIGINT);
+  ::kill(capture, SIGINT);
+  ::kill(tracker, SIGINT);
+
+  const int status = run.wait(120).value_or(-1);
+  const std::string output = test::readText(log.string());
+  EXPECT_EQ(status, 130) << output;
+  EXPECT_NE(output.find("run stopped by the user"), std::string::npos) << output;
+  EXPECT_EQ(output.find("FAILED"), std::string::npos) << output;
+  EXPECT_EQ(output.find("a process failed"), std::string::npos) << output;
+  EXPECT_EQ(output.find("ended early"), std::string::npos) << output;
+  EXPECT_GE(poses(out / "trajectory.txt"), 20u);
+  EXPECT_NE(test::readText((out / "eval.json").string()).find("\"ate\""), std::string::npos) << output;
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
+}  // namespace
+}  // namespace bmp
