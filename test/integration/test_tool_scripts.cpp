@@ -1,5 +1,5 @@
-// The benchmark scripts as a user meets them: --help, arguments refused up front, and no process left
-// behind.
+// The benchmark scripts as a user meets them: --help, arguments refused up front, an exit status that says
+// whether the runs worked, and no process left behind.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,6 +71,36 @@ TEST(BenchCapture, FailedCaptureLeavesNoListenerBehind) {
   EXPECT_NE(o.status, 0) << o.output;
   const auto left = livingProcessesMentioning(dir.string());
   EXPECT_TRUE(left.empty()) << left.front();
+}
+
+// A misspelt variant or a non-number used to run (and fail) every run, then exit 0.
+TEST(Bench, RefusesBadArgumentsBeforeAnyRun) {
+  const fs::path dir = test::scratchDir("bench_args");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--variants", "bogus"}, "--variants 'bogus'"},
+      {{"--frames", "abc"}, "--frames 'abc'"},
+      {{"--modes", "slow"}, "--modes 'slow'"},
+      {{"--every", "0"}, "--every '0'"},
+      {{"--frames"}, "--frames needs a value"}};
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"--dataset", test::bonnDir(), "--out", (dir / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome o = runScript("bench", args);
+    EXPECT_EQ(o.status, 2) << extra[0] << ": " << o.output;
+    EXPECT_NE(o.output.find(message), std::string::npos) << o.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));  // refused before anything was written
+}
+
+// Every run failing is the benchmark's failure, not only a column of results.md.
+TEST(Bench, FailedRunsMakeTheExitStatusNonZero) {
+  const fs::path dir = test::scratchDir("bench_failed_runs");
+  const Outcome o = runScript("bench",
+                              {"--dataset", brokenSequence(dir).string(), "--variants", "none", "--runs", "1",
+                               "--out", (dir / "out").string()},
+                              "", 180);
+  EXPECT_EQ(o.status, 1) << o.output;
+  EXPECT_NE(o.output.find("1 of 1 runs failed"), std::string::npos) << o.output;
 }
 
 }  // namespace
