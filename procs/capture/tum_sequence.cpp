@@ -87,7 +87,7 @@ SequenceIndex indexSequence(const std::string& dir, double max_difference) {
       if (fs::is_regular_file(root / e.path)) {
         kept.push_back(std::move(e));
       } else {
-        index.missing_files.push_back((root / e.path).string());
+        index.missing_files.push_back({e.stamp, (root / e.path).string()});
       }
     }
     return kept;
@@ -115,7 +115,7 @@ SequenceIndex indexSequence(const std::string& dir, double max_difference) {
     // Paths written relative to another folder leave every file missing: say so, with one of them.
     if (!index.missing_files.empty())
       why += "; " + std::to_string(index.missing_files.size()) + " listed files do not exist, such as " +
-             index.missing_files.front();
+             index.missing_files.front().path;
     throw SequenceError(why + ")");
   }
   if (fs::is_regular_file(root / "groundtruth.txt")) {

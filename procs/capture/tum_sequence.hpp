@@ -49,8 +49,9 @@ struct SequenceIndex {
   std::string groundtruth_problem;  // why a groundtruth.txt there was not read (file and line), else ""
   std::size_t rgb_entries = 0;      // entries whose file exists
   std::size_t depth_entries = 0;
-  // Listed files that do not exist; left out before association, so their neighbours can still pair.
-  std::vector<std::string> missing_files;
+  // Listed files that do not exist (stamp and path from the sequence's folder); left out before
+  // association, so their neighbours can still pair.
+  std::vector<ListEntry> missing_files;
   // What was worked around in rgb.txt and depth.txt (a last line cut off while written), file and line.
   std::vector<std::string> list_problems;
 };

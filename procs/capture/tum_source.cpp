@@ -1,5 +1,6 @@
 #include "capture/tum_source.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -10,8 +11,22 @@ TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSou
   if (options_.selection.every < 1) throw std::invalid_argument("frame selection: every must be >= 1");
   if (options_.selection.start < 0) throw std::invalid_argument("frame selection: start must be >= 0");
   cursor_ = options_.selection.start;
-  for (const auto& path : index_.missing_files)
-    skip(skips_.missing_files, path + ": listed but does not exist");
+  for (const auto& file : index_.missing_files)
+    if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + ": listed but does not exist");
+}
+
+bool TumSource::inPlayedRange(double stamp) const {
+  // From the first played frame up to the first frame after the range: consecutive ranges share out the
+  // missing files, and a file before the sequence's first frame belongs to a range that starts there.
+  const auto total = static_cast<int64_t>(index_.frames.size());
+  const auto first_stamp = [&](int64_t i) {
+    const FramePair& f = index_.frames[static_cast<std::size_t>(i)];
+    return std::min(f.rgb_stamp, f.depth_stamp);
+  };
+  const int64_t start = options_.selection.start;
+  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
+  if (start >= end) return false;
+  return (start == 0 || stamp >= first_stamp(start)) && (end == total || stamp < first_stamp(end));
 }
 
 int64_t TumSource::size() const {

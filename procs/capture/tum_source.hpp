@@ -41,6 +41,8 @@ class TumSource : public FrameSource {
   // Reads and checks one image; returns false (and counts why) when the frame must be skipped.
   bool load(const std::string& path, bool is_depth, EncodedImage& out);
   void skip(int64_t& counter, const std::string& reason);
+  // Whether a listed file's stamp falls among the frames this source plays (its missing files are counted).
+  bool inPlayedRange(double stamp) const;
 
   SequenceIndex index_;
   CameraIntrinsics camera_;

@@ -137,6 +137,21 @@ class DamagedFolder : public ::testing::Test {
   std::vector<fs::path> depth_files_, rgb_files_;
 };
 
+// --frames 60 on Bonn used to report all 6 of the sequence's missing files as skipped, though one falls among
+// those frames: each is counted by the range it falls in, so consecutive ranges share them out.
+TEST(TumSequence, MissingFilesAreCountedForThePlayedFramesOnly) {
+  const SequenceIndex index = indexSequence(test::bonnDir());
+  const auto missing = [&](FrameSelection selection) {
+    TumSourceOptions options;
+    options.selection = selection;
+    return TumSource(index, bonnCamera(), options).skips().missing_files;
+  };
+  EXPECT_EQ(missing({0, 60, 1}), 1);
+  EXPECT_EQ(missing({60, -1, 1}), 5);
+  EXPECT_EQ(missing({0, -1, 1}), 6);
+  EXPECT_EQ(missing({300, 400, 1}), 0);
+}
+
 TEST_F(DamagedFolder, IntactFolderPlaysEveryFrameAsFileBytes) {
   SkipReport skips;
   std::vector<std::string> warnings;

@@ -144,6 +144,15 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   const Eigen::Vector2i wall = grid.cellOf({0.0, 3.025});
   ASSERT_TRUE(grid.inside(wall.x(), wall.y()));
   EXPECT_EQ(grid.at(wall.x(), wall.y()), plan::kOccupied);
+
+  // The last heartbeat (what the run summary prints) gives the points in the files, not the working
+  // cloud's, which still holds points the filter and carving drop before a save.
+  ASSERT_TRUE(m.pumpUntil([&] { return m.status->state == process_status_t::STATE_FINISHED; }, 10));
+  const std::string pcd = bmp::test::readText((m.mapDir() / "map.pcd").string());
+  const std::size_t at = pcd.find("\nPOINTS ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string saved = "points " + std::to_string(std::stoll(pcd.substr(at + 8))) + " saved";
+  EXPECT_NE(m.status->message.find(saved), std::string::npos) << saved << " / " << m.status->message;
 }
 
 // A map folder that cannot be made (a plain file in its place) stops the mapper at start-up, naming it,

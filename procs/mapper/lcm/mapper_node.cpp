@@ -151,8 +151,10 @@ bool MapperNode::save(const std::string& why) {
     Stopwatch watch;
     const auto written = writeMapFiles(out_dir_, *mapper_);
     save_dirty_ = false;
-    log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ",
-              mapper_->cloud().size(), " points, ", static_cast<int>(watch.elapsedMs()), " ms");
+    saved_points_ = mapper_->cloud().size();
+    log::info("map saved (", why, "): ", written.size(), " files in ", out_dir_, ", ", *saved_points_,
+              " points, ", static_cast<int>(watch.elapsedMs()), " ms");
+    ctx_.status.setMessage(statusLine());  // the next heartbeat, the last one at exit, says what was saved
     return true;
   } catch (const FileWriteError& e) {
     log::error("map not saved (", why, "): ", e.what());
@@ -162,13 +164,20 @@ bool MapperNode::save(const std::string& why) {
 
 std::string MapperNode::statusLine() const {
   const TimingStats& t = mapper_->integrationTimes();
-  char line[256];
-  std::snprintf(
-      line, sizeof(line),
-      "keyframes %zu (+%zu merged), points %zu, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
-      mapper_->keyframeCount(), mapper_->mergedCount(), mapper_->pointCount(),
-      mapper_->occupancy().nodeCount(), static_cast<double>(bmp::residentBytes()) / (1 << 20),
-      t.empty() ? 0.0 : t.median());
+  // The working cloud still holds points the voxel filter and carving drop before a save: the saved figure
+  // is the one to compare with the files.
+  char points[96];
+  if (saved_points_)
+    std::snprintf(points, sizeof(points), "points %zu saved (%zu in the working cloud)", *saved_points_,
+                  mapper_->pointCount());
+  else
+    std::snprintf(points, sizeof(points), "points none saved yet (%zu in the working cloud)",
+                  mapper_->pointCount());
+  char line[320];
+  std::snprintf(line, sizeof(line),
+                "keyframes %zu (+%zu merged), %s, octree nodes %zu, rss %.0f MiB, integration median %.1f ms",
+                mapper_->keyframeCount(), mapper_->mergedCount(), points, mapper_->occupancy().nodeCount(),
+                static_cast<double>(bmp::residentBytes()) / (1 << 20), t.empty() ? 0.0 : t.median());
   return last_warning_.empty() ? line : std::string(line) + "; last warning: " + last_warning_;
 }
 

@@ -52,6 +52,7 @@ class MapperNode {
   bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
   std::string last_warning_;
   bool floor_reported_ = false;
+  std::optional<std::size_t> saved_points_;  // points in the files of the last save
 };
 
 }  // namespace bmp::mapper
