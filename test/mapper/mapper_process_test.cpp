@@ -102,20 +102,26 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   poses.ids = {1, 99};
   poses.T_world_cam = {toMsg(test::translation(0.5, 0, 0)), toMsg(SE3::Identity())};
   m.publish("SLAM_KEYFRAME_POSES", poses);
+  keyframe_poses_t replayed = poses;  // an older optimisation's pose for keyframe 1, after the newer one
+  replayed.utime = 4000000;
+  replayed.num_keyframes = 1;
+  replayed.ids = {1};
+  replayed.T_world_cam = {toMsg(test::translation(9, 0, 0))};
+  m.publish("SLAM_KEYFRAME_POSES", replayed);
 
   // 4 keyframes (the replaced one among them) and the pose message processed; the far one, the second
-  // forged keyframe, the corrupt one and the unknown id counted as malformed. The map holds the 3 real
-  // keyframes.
+  // forged keyframe, the corrupt one, the unknown id and the older pose counted as malformed. The map holds
+  // the 3 real keyframes.
   ASSERT_TRUE(m.pumpUntil(
       [&] {
-        return m.status && m.status->processed >= 5 && m.status->malformed >= 4 &&
+        return m.status && m.status->processed >= 5 && m.status->malformed >= 5 &&
                m.status->message.find("keyframes 3") != std::string::npos;
       },
       20))
       << m.log();
-  EXPECT_EQ(m.status->received, 8);
+  EXPECT_EQ(m.status->received, 9);
   EXPECT_EQ(m.status->processed, 5);
-  EXPECT_EQ(m.status->malformed, 4);
+  EXPECT_EQ(m.status->malformed, 5);
   EXPECT_NE(m.status->message.find("keyframes 3"), std::string::npos) << m.status->message;
   EXPECT_NE(m.status->message.find("octree nodes"), std::string::npos) << m.status->message;
   ASSERT_TRUE(m.pumpUntil([&] { return m.grid.has_value(); }, 10));
@@ -135,6 +141,9 @@ TEST(MapperProcess, MapsKeyframesRefusesBadInputAndSavesOnSignals) {
   EXPECT_NE(log.find("keyframe 501: camera changed mid-run"), std::string::npos) << log;
   EXPECT_NE(log.find("keyframe 502: pose 500 m from the world origin"), std::string::npos) << log;
   EXPECT_NE(log.find("pose update for keyframe 99: unknown keyframe"), std::string::npos) << log;
+  EXPECT_NE(log.find("pose update for keyframe 1: stamped 4000000 us, older than its pose of 5000000 us"),
+            std::string::npos)
+      << log;
   EXPECT_NE(log.find("map saved (SIGUSR1)"), std::string::npos) << log;
   EXPECT_NE(log.find("map saved (exit)"), std::string::npos) << log;
   for (const char* name : {"map.pcd", "map.ply", "map.bt", "occupancy.pgm", "occupancy.yaml", "cloud_top.png",

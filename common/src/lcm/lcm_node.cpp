@@ -1,6 +1,5 @@
 #include "bmp/lcm/lcm_node.hpp"
 
-#include <chrono>
 #include <cstdlib>
 #include <fstream>
 
@@ -79,29 +78,12 @@ void LcmNode::guarded(const std::string& channel, uint32_t size, const std::func
 
 void LcmNode::reportMalformed(const std::string& channel, uint32_t size, const std::string& expected) {
   const int64_t total = ++malformed_;
-  std::string line;
-  {
-    // The first few on a channel are each named; after that one line every few seconds says how many.
-    constexpr int kEachNamed = 5;
-    constexpr int64_t kSummaryEveryUs = 5'000'000;
-    const std::lock_guard<std::mutex> lock(warn_mutex_);
-    WarnState& w = warn_state_[channel];
-    const int64_t now = std::chrono::duration_cast<std::chrono::microseconds>(
-                            std::chrono::steady_clock::now().time_since_epoch())
-                            .count();
-    ++w.count;
-    if (w.count > kEachNamed && now - w.last_warned_us < kSummaryEveryUs) {
-      ++w.silenced;
-      return;
-    }
-    line = "malformed message on channel " + channel + " (" + std::to_string(size) + " bytes): not a " +
-           expected + "; skipped (" + std::to_string(total) + " so far";
-    if (w.silenced > 0) line += ", " + std::to_string(w.silenced) + " more on " + channel + " not shown";
-    line += ")";
-    w.silenced = 0;
-    w.last_warned_us = now;
-  }
-  warn_(line);
+  const std::optional<int64_t> left_out = warnings_.admit(channel);
+  if (!left_out) return;
+  std::string line = "malformed message on channel " + channel + " (" + std::to_string(size) +
+                     " bytes): not a " + expected + "; skipped (" + std::to_string(total) + " so far";
+  if (*left_out > 0) line += ", " + std::to_string(*left_out) + " more on " + channel + " not shown";
+  warn_(line + ")");
 }
 
 }  // namespace bmp

@@ -63,7 +63,7 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
 
 void DetectorNode::skip(const FrameResult& failed) {
   const std::string warning = "frame seq " + std::to_string(failed.seq) + ": " + failed.error + "; skipped";
-  log::warn(warning);
+  if (const auto left_out = warnings_.admit("skipped frames")) log::warn(warning, leftOutNote(*left_out));
   ctx_.status.malformed();
   ctx_.status.setMessage(warning);
   answer(toDetectionsMessage(failed, model_name_));

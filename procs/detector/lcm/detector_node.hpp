@@ -6,6 +6,7 @@
 #include <bmp/rgbd_frame_t.hpp>
 
 #include "bmp/common/timing.hpp"
+#include "bmp/common/warning_throttle.hpp"
 #include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
@@ -44,6 +45,7 @@ class DetectorNode {
   TimingStats frame_times_;
   FrameStream stream_;  // refuses unusable or out-of-order frames, counts those lost upstream
   LastAnswer<detections_t> last_answer_;  // published again for a frame capture resends
+  WarningThrottle warnings_;              // a flood of bad frames cannot flood the log
   DetectionWorker worker_;                // last: its thread stops first, before what it uses goes
 };
 

@@ -71,7 +71,7 @@ void MapperNode::maintainAndPublish(double now) {
 void MapperNode::refuse(const std::string& what) {
   ctx_.status.malformed();
   last_warning_ = what;
-  log::warn(what);
+  if (const auto left_out = warnings_.admit("refused input")) log::warn(what, leftOutNote(*left_out));
 }
 
 void MapperNode::startMapWithCamera(const keyframe_t& msg) {
@@ -80,6 +80,7 @@ void MapperNode::startMapWithCamera(const keyframe_t& msg) {
               mapper_->keyframeCount(), " keyframe(s) mapped with the replaced camera");
     const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
     mapper_.emplace(settings);
+    pose_order_.clear();
     floor_reported_ = false;
   }
   camera_.pin(msg.camera, msg.depth_scale);
@@ -106,7 +107,11 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
   ctx_.status.received();
   status_dirty_ = true;
   std::vector<std::string> rejected;
-  const PoseUpdateResult r = mapper_->updatePoses(poseUpdatesFromMessage(msg, rejected));
+  const std::vector<PoseUpdate> updates =
+      pose_order_.notOlder(poseUpdatesFromMessage(msg, rejected), msg.utime, rejected);
+  const PoseUpdateResult r = mapper_->updatePoses(updates);
+  for (const PoseUpdate& u : updates)
+    if (mapper_->hasKeyframe(u.id)) pose_order_.taken(u.id, msg.utime);  // bounded by the map's keyframes
   rejected.insert(rejected.end(), r.rejected.begin(), r.rejected.end());
   for (const auto& line : rejected) refuse("pose update for " + line + "; skipped");
   if (r.applied > 0) {

@@ -8,11 +8,13 @@
 #include <bmp/keyframe_t.hpp>
 
 #include "bmp/common/timing.hpp"
+#include "bmp/common/warning_throttle.hpp"
 #include "bmp/lcm/camera_pin.hpp"
 #include "bmp/lcm/process.hpp"
 #include "mapper/lcm/process_settings.hpp"
 #include "mapper/lcm/save_signal.hpp"
 #include "mapper/mapper.hpp"
+#include "mapper/pose_update_order.hpp"
 
 namespace bmp::mapper {
 
@@ -46,11 +48,13 @@ class MapperNode {
   std::string out_dir_;
   std::optional<Mapper> mapper_;  // made again when another camera replaces an unsettled one
   CameraPin camera_;
+  PoseUpdateOrder pose_order_;  // older pose updates than a keyframe has are refused
   SaveSignal save_signal_;
   Stopwatch clock_;
   double last_grid_s_ = -1e300, last_cloud_s_ = -1e300, last_save_s_ = 0, last_status_s_ = -1e300;
   bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
   std::string last_warning_;
+  WarningThrottle warnings_;  // a flood of bad input (16k pose updates in one message) cannot flood the log
   bool floor_reported_ = false;
   std::optional<std::size_t> saved_points_;  // points in the files of the last save
 };

@@ -69,9 +69,11 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
 void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict) {
   // Answered here, on the receive thread: a flood of bad frames never pushes real ones out of the queue.
   const std::string reason = "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason;
-  if (verdict.lost_before > 0)
-    log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
-  log::warn(reason, "; skipped");
+  if (const auto left_out = warnings_.admit("refused frames")) {
+    if (verdict.lost_before > 0)
+      log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
+    log::warn(reason, "; skipped", leftOutNote(*left_out));
+  }
   const slam_pose_t answer = toSkippedPoseMessage(msg, reason);
   last_pose_.remember(answer);
   ctx_.lcm.publish(channels_.pose, answer);
@@ -205,7 +207,8 @@ void TrackerNode::run(double idle_exit_s) {
 void TrackerNode::skip(const rgbd_frame_t& msg, const std::string& reason) {
   ctx_.status.malformed();
   ctx_.status.setMessage(reason);
-  log::warn(reason, "; skipped");
+  if (const auto left_out = warnings_.admit("unreadable frames"))
+    log::warn(reason, "; skipped", leftOutNote(*left_out));
   const slam_pose_t answer = toSkippedPoseMessage(msg, reason);
   last_pose_.remember(answer);
   ctx_.lcm.publish(channels_.pose, answer);  // answered all the same

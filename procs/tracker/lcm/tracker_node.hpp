@@ -19,6 +19,7 @@
 #include "bmp/common/bounded_queue.hpp"
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tum_trajectory.hpp"
+#include "bmp/common/warning_throttle.hpp"
 #include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
@@ -98,6 +99,7 @@ class TrackerNode {
   std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0};
   std::mutex refusal_mutex_;
   std::string last_refusal_;  // guarded by refusal_mutex_
+  WarningThrottle warnings_;  // a flood of bad frames cannot flood the log (both threads)
   int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0, refused_reported_ = 0;
   FrameStream stream_;     // receive thread only
   int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked

@@ -5,15 +5,14 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bmp/common/warning_throttle.hpp"
 #include "bmp/lcm/wire_check.hpp"
 
 namespace bmp {
@@ -128,14 +127,7 @@ class LcmNode {
   lcm::LCM lcm_;
   WarningSink warn_;
   std::atomic<int64_t> malformed_{0};  // counted on whichever thread dispatches, read by the heartbeat
-  // Warnings are limited per channel, so a flood of bad messages cannot flood the log.
-  struct WarnState {
-    int64_t count = 0;
-    int64_t last_warned_us = 0;
-    int64_t silenced = 0;
-  };
-  std::mutex warn_mutex_;
-  std::map<std::string, WarnState> warn_state_;
+  WarningThrottle warnings_;           // per channel, so a flood of bad messages cannot flood the log
   int queue_capacity_ = 30;
   std::vector<std::unique_ptr<SubscriberBase>> subscribers_;
 };

@@ -1,0 +1,22 @@
+#include "mapper/pose_update_order.hpp"
+
+#include <utility>
+
+namespace bmp::mapper {
+
+std::vector<PoseUpdate> PoseUpdateOrder::notOlder(std::vector<PoseUpdate> updates, int64_t utime,
+                                                  std::vector<std::string>& stale) const {
+  std::vector<PoseUpdate> out;
+  out.reserve(updates.size());
+  for (auto& u : updates) {
+    const auto it = newest_.find(u.id);
+    if (it != newest_.end() && utime < it->second)
+      stale.push_back("keyframe " + std::to_string(u.id) + ": stamped " + std::to_string(utime) +
+                      " us, older than its pose of " + std::to_string(it->second) + " us");
+    else
+      out.push_back(std::move(u));
+  }
+  return out;
+}
+
+}  // namespace bmp::mapper
