@@ -297,5 +297,36 @@ TEST(SyntheticTumFolder, PlaysThroughTheTumReader) {
   EXPECT_EQ(source.skips().total(), 0);
 }
 
+// --out on an existing folder: a typo naming a recorded sequence must not rewrite its lists, and a rerun
+// with --overwrite must not leave the old run's frames behind.
+TEST(SyntheticTumFolder, RefusesAFolderThatIsNotEmptyAndReplacesOnlyItsOwn) {
+  namespace fs = std::filesystem;
+  const fs::path recorded = test::scratchDir("recorded");
+  std::ofstream(recorded / "rgb.txt") << "# color images\n1.0 rgb/1.0.png\n";
+  EXPECT_THROW(prepareTumFolder(recorded.string(), false), OutputFolderError);
+  EXPECT_THROW(prepareTumFolder(recorded.string(), true), OutputFolderError);  // not bmp-synth's rgb.txt
+  std::ifstream kept(recorded / "rgb.txt");
+  std::string line;
+  std::getline(kept, line);
+  EXPECT_EQ(line, "# color images");
+
+  const fs::path dir = test::scratchDir("rerun");
+  prepareTumFolder(dir.string(), false);  // empty: fine
+  writeTumFolder(SyntheticScene(shortSequence(3)), dir.string());
+  try {
+    prepareTumFolder(dir.string(), false);
+    ADD_FAILURE() << "a folder holding a sequence was accepted";
+  } catch (const OutputFolderError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.string()), std::string::npos) << e.what();
+  }
+  prepareTumFolder(dir.string(), true);
+  EXPECT_TRUE(fs::is_empty(dir));
+  writeTumFolder(SyntheticScene(shortSequence(3)), dir.string());
+  std::ofstream(dir / "rgb" / "notes.txt") << "mine\n";  // someone's file inside: refused, kept
+  EXPECT_THROW(prepareTumFolder(dir.string(), true), OutputFolderError);
+  EXPECT_TRUE(fs::exists(dir / "rgb" / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "rgb.txt"));
+}
+
 }  // namespace
 }  // namespace bmp::capture

@@ -53,7 +53,10 @@ capture::SyntheticSceneConfig sceneConfig(const ArgParser& args) {
 
 void addSynthOptions(ArgParser& args) {
   args.addOption("config", "FILE", "YAML file with a 'synthetic:' section", kDefaultConfig);
-  args.addOption("out", "DIR", "output folder (created)", "synthetic");
+  args.addOption("out", "DIR", "output folder: created, or an empty one (see --overwrite)", "synthetic");
+  args.addFlag("overwrite",
+               "replace a sequence bmp-synth wrote in --out before (its lists, images and camera.yaml); a "
+               "folder holding anything else is still refused");
   args.addOption("frames", "N", "number of frames (overrides the configuration)");
   args.addOption("seed", "N", "random seed for textures and motion (overrides the configuration)");
   args.addFlag("static", "no moving objects (num_moving_objects = 0)");
@@ -61,13 +64,16 @@ void addSynthOptions(ArgParser& args) {
                  "benchmark: render N frames without writing and print median/p95 ms per frame");
   args.addEpilog(
       "\nWrites DIR/rgb/*.png, DIR/depth/*.png (16 bit), DIR/mask/*.png (255 on moving objects),\n"
-      "DIR/rgb.txt, DIR/depth.txt and DIR/groundtruth.txt.\n"
+      "DIR/rgb.txt, DIR/depth.txt, DIR/groundtruth.txt and DIR/camera.yaml.\n"
+      "A folder that is not empty is refused (exit 1), so a typo cannot overwrite a recorded sequence.\n"
       "Example: bmp-synth --out /tmp/synth_static --static --frames 300\n");
 }
 
 int runSynth(const ArgParser& args) {
   const capture::SyntheticSceneConfig config = sceneConfig(args);
   const std::string out = args.value("out");
+  // Before the scene is built (seconds with people): a refused folder is said at once.
+  if (!args.given("bench")) capture::prepareTumFolder(out, args.flag("overwrite"));
   Stopwatch setup;
   const capture::SyntheticScene scene(config);
   if (args.given("bench")) return benchmark(scene, static_cast<int>(args.integer("bench")));
