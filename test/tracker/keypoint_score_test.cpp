@@ -24,9 +24,9 @@ TEST(KeypointScore, CountsKeypointsOnMoversAndOnTheStaticSceneAgainstTheMask) {
   EXPECT_EQ(score.onMovers(), 4);
   EXPECT_EQ(score.onStatic(), 6);
   EXPECT_EQ(score.flagged(), 4);
-  EXPECT_DOUBLE_EQ(score.precision(), 3.0 / 4.0);
-  EXPECT_DOUBLE_EQ(score.recall(), 3.0 / 4.0);
-  EXPECT_DOUBLE_EQ(score.staticKeptOut(), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(score.precision().value_or(-1), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(score.recall().value_or(-1), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(score.staticKeptOut().value_or(-1), 1.0 / 6.0);
   EXPECT_EQ(score.missedOutsideRegions(), 0);
   EXPECT_EQ(score.missedInsideRegions(), 1);  // (5, 5): its region said moving, its history held it
   EXPECT_EQ(score.staticOutInsideRegions(), 1);
@@ -38,15 +38,28 @@ TEST(KeypointScore, CountsKeypointsOnMoversAndOnTheStaticSceneAgainstTheMask) {
   EXPECT_EQ(without.staticOutByHistory(), 1);
   score.add(r, movers);  // counts add up over frames
   EXPECT_EQ(score.onMovers(), 8);
-  EXPECT_DOUBLE_EQ(score.recall(), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(score.recall().value_or(-1), 3.0 / 4.0);
   EXPECT_EQ(score.missedOutsideRegions(), 1);
 }
 
-TEST(KeypointScore, NothingKeptOutAndNoMoverGiveOneNotNaN) {
+// Nothing scored is no score: a perfect 1.0 here once put 100 % into tools/bench's table for 5 frames.
+TEST(KeypointScore, NothingCountedGivesNoShareNotAPerfectOne) {
   KeypointScore score;
-  EXPECT_DOUBLE_EQ(score.precision(), 1.0);
-  EXPECT_DOUBLE_EQ(score.recall(), 1.0);
-  EXPECT_DOUBLE_EQ(score.staticKeptOut(), 1.0);
+  EXPECT_FALSE(score.precision().has_value());
+  EXPECT_FALSE(score.recall().has_value());
+  EXPECT_FALSE(score.staticKeptOut().has_value());
+  EXPECT_FALSE(score.moversInPoseShare().has_value());
+  EXPECT_EQ(shareText(score.recall()), "n/a");
+  EXPECT_EQ(shareText(0.5), "0.5000");
+  // Static keypoints only, none kept out: no mover to score recall on, nothing kept out for precision.
+  TrackResult r;
+  r.keypoints.emplace_back(1, 1);
+  r.keypoint_dynamic.push_back(0);
+  score.add(r, cv::Mat::zeros(4, 4, CV_8UC1));
+  EXPECT_FALSE(score.recall().has_value());
+  EXPECT_FALSE(score.precision().has_value());
+  ASSERT_TRUE(score.staticKeptOut().has_value());
+  EXPECT_DOUBLE_EQ(*score.staticKeptOut(), 0.0);
 }
 
 TEST(KeypointScore, RejectsAMaskOfTheWrongTypeAndFlagsThatDoNotMatch) {

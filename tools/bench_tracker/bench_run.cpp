@@ -83,17 +83,19 @@ struct MaskScore {
 };
 
 void printMaskScore(const MaskScore& s) {
-  std::printf("dynamic recall    %.4f (keypoints on movers kept out)\n", s.score.recall());
-  std::printf("dynamic precision %.4f (keypoints kept out that are on movers)\n", s.score.precision());
-  std::printf("static kept out   %.4f\n", s.score.staticKeptOut());
+  // "n/a" for a share of nothing (no keypoint on a mover, none kept out): tools/bench reads it as no score.
+  std::printf("dynamic recall    %s (keypoints on movers kept out)\n", shareText(s.score.recall()).c_str());
+  std::printf("dynamic precision %s (keypoints kept out that are on movers)\n",
+              shareText(s.score.precision()).c_str());
+  std::printf("static kept out   %s\n", shareText(s.score.staticKeptOut()).c_str());
   std::printf("missed on movers  %ld outside every moving region, %ld inside one (history held them)\n",
               s.score.missedOutsideRegions(), s.score.missedInsideRegions());
   std::printf("static out        %ld inside a moving region, %ld by history alone\n",
               s.score.staticOutInsideRegions(), s.score.staticOutByHistory());
   std::printf("keypoints scored  %ld on movers, %ld static (from %.0f s on)\n", s.score.onMovers(),
               s.score.onStatic(), kScoreFromS);
-  std::printf("pose inliers on movers %ld of %ld (%.4f)\n", s.score.moversInPose(), s.score.inPose(),
-              s.score.inPose() > 0 ? static_cast<double>(s.score.moversInPose()) / s.score.inPose() : 0.0);
+  std::printf("pose inliers on movers %ld of %ld (%s)\n", s.score.moversInPose(), s.score.inPose(),
+              shareText(s.score.moversInPoseShare()).c_str());
 }
 
 void printRunSummary(const OfflineResult& result, const FrameTimes& times, long long dropped) {

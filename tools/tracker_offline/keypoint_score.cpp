@@ -1,12 +1,14 @@
 #include "tracker_offline/keypoint_score.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 namespace bmp::tracker {
 
 namespace {
-double share(long part, long whole) {
-  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 1.0;
+std::optional<double> share(long part, long whole) {
+  if (whole <= 0) return std::nullopt;
+  return static_cast<double>(part) / static_cast<double>(whole);
 }
 }  // namespace
 
@@ -40,14 +42,24 @@ void KeypointScore::add(const TrackResult& result, const cv::Mat& movers) {
   }
 }
 
-double KeypointScore::precision() const {
+std::optional<double> KeypointScore::precision() const {
   return share(mover_out_, mover_out_ + static_out_);
 }
-double KeypointScore::recall() const {
+std::optional<double> KeypointScore::recall() const {
   return share(mover_out_, mover_);
 }
-double KeypointScore::staticKeptOut() const {
+std::optional<double> KeypointScore::staticKeptOut() const {
   return share(static_out_, static_);
+}
+std::optional<double> KeypointScore::moversInPoseShare() const {
+  return share(mover_in_pose_, in_pose_);
+}
+
+std::string shareText(const std::optional<double>& share) {
+  if (!share) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4f", *share);
+  return text;
 }
 
 }  // namespace bmp::tracker

@@ -1,6 +1,9 @@
 #pragma once
 // The dynamic stage scored against the truth: each keypoint is on a mover or on the static scene (a mask,
 // nonzero on movers), and the stage kept it out or not.
+#include <optional>
+#include <string>
+
 #include <opencv2/core.hpp>
 
 #include "tracker/tracker.hpp"
@@ -17,12 +20,15 @@ class KeypointScore {
   long onStatic() const { return static_; }
   long flagged() const { return mover_out_ + static_out_; }
   long moversOut() const { return mover_out_; }
-  // Of the keypoints kept out, the share on movers (1 when none was kept out).
-  double precision() const;
-  // Of the keypoints on movers, the share kept out (1 when none was on a mover).
-  double recall() const;
+  // Each share is empty when nothing was counted for it (0 / 0): no score, neither perfect nor zero.
+  // Of the keypoints kept out, the share on movers.
+  std::optional<double> precision() const;
+  // Of the keypoints on movers, the share kept out.
+  std::optional<double> recall() const;
   // Of the keypoints on the static scene, the share kept out: background lost to the pose.
-  double staticKeptOut() const;
+  std::optional<double> staticKeptOut() const;
+  // Of the pose inliers, the share on movers.
+  std::optional<double> moversInPoseShare() const;
   // Why: keypoints on movers not kept out, by the region test's verdict in their frame (outside every
   // moving region, or inside one but held below the threshold by their history); static keypoints kept
   // out, inside a moving region or by their history alone.
@@ -39,5 +45,8 @@ class KeypointScore {
   long missed_outside_ = 0, static_out_in_region_ = 0;
   long in_pose_ = 0, mover_in_pose_ = 0;
 };
+
+// A share as printed: four decimals, or "n/a" when it is undefined.
+std::string shareText(const std::optional<double>& share);
 
 }  // namespace bmp::tracker
