@@ -1,8 +1,37 @@
 #include "bmp/common/camera_config.hpp"
 
+#include <cmath>
+#include <sstream>
 #include <string>
+#include <utility>
 
 namespace bmp {
+
+namespace {
+
+std::string number(double v) {
+  std::ostringstream text;
+  text << v;
+  return text.str();
+}
+
+// Each impossible value named by its key and file: a principal point outside the image (cx: 5000 for a
+// 640-wide one) still tracks, and gives a trajectory metres off without a word.
+void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
+  c.check(k.width > 0, "width", "must be positive, got " + std::to_string(k.width));
+  c.check(k.height > 0, "height", "must be positive, got " + std::to_string(k.height));
+  // NaN fails every comparison, so !(v > 0) refuses it too.
+  for (const auto& [key, v] :
+       {std::pair<const char*, double>{"fx", k.fx}, {"fy", k.fy}, {"depth_scale", k.depth_scale}})
+    c.check(std::isfinite(v) && v > 0, key, "must be a positive number, got " + number(v));
+  c.check(std::isfinite(k.cx) && k.cx >= 0 && k.cx <= k.width, "cx",
+          "must lie inside the image (0 to width " + std::to_string(k.width) + "), got " + number(k.cx));
+  c.check(std::isfinite(k.cy) && k.cy >= 0 && k.cy <= k.height, "cy",
+          "must lie inside the image (0 to height " + std::to_string(k.height) + "), got " + number(k.cy));
+  for (double d : k.distortion) c.check(std::isfinite(d), "distortion", "must hold finite numbers");
+}
+
+}  // namespace
 
 CameraIntrinsics cameraFromConfig(const Config& c) {
   CameraIntrinsics k;
@@ -18,9 +47,7 @@ CameraIntrinsics cameraFromConfig(const Config& c) {
                       "' must list 5 values (k1, k2, p1, p2, k3), got " + std::to_string(d.size()));
   for (int i = 0; i < 5; ++i) k.distortion[i] = d[i];
   k.depth_scale = c.require<double>("depth_scale");
-  if (k.width <= 0 || k.height <= 0 || k.fx <= 0 || k.fy <= 0 || k.depth_scale <= 0)
-    throw ConfigError(c.origin() + ": camera '" + c.path("") +
-                      "' needs positive size, focal lengths and depth_scale");
+  checkIntrinsics(c, k);
   return k;
 }
 

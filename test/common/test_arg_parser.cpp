@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
 #include "bmp/common/arg_parser.hpp"
+#include "bmp/common/arg_range.hpp"
+
+#include <limits>
 
 namespace bmp {
 namespace {
@@ -64,6 +67,42 @@ TEST(ArgParser, ListSplitsAtCommasAndDropsEmptyItems) {
   ASSERT_TRUE(p.parse(3, argv));
   EXPECT_EQ(p.list("names"), (std::vector<std::string>{"a", "b", "c"}));
   EXPECT_TRUE(p.list("none").empty());
+}
+
+// Ranged values: out of range (NaN and infinity included) is an ArgError naming option, range and value.
+TEST(ArgRange, RefusesValuesOutsideTheRangeNamingOptionRangeAndValue) {
+  ArgParser p("prog", "summary");
+  p.addOption("conf", "X", "a probability");
+  p.addOption("n", "N", "a count");
+  const auto parse = [&p](const char* conf, const char* n) {
+    const char* argv[] = {"prog", "--conf", conf, "--n", n};
+    ASSERT_TRUE(p.parse(5, argv));
+  };
+  parse("0.5", "3");
+  EXPECT_DOUBLE_EQ(numberIn(p, "conf", 0, 1), 0.5);
+  EXPECT_DOUBLE_EQ(positiveNumber(p, "conf"), 0.5);
+  EXPECT_EQ(integerIn(p, "n", 0, std::numeric_limits<long long>::max()), 3);
+  for (const char* bad : {"5", "-1", "nan", "inf"}) {
+    parse(bad, "-3");
+    try {
+      numberIn(p, "conf", 0, 1);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const ArgError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("prog: --conf must be a number from 0 to 1, got '") + bad + "'");
+    }
+    if (std::string(bad) != "5") {
+      EXPECT_THROW(positiveNumber(p, "conf"), ArgError) << bad;
+    }
+  }
+  try {
+    integerIn(p, "n", 0, std::numeric_limits<long long>::max());
+    ADD_FAILURE() << "-3 accepted";
+  } catch (const ArgError& e) {
+    EXPECT_EQ(std::string(e.what()), "prog: --n must be an integer of at least 0, got '-3'");
+  }
+  parse("0", "0");
+  EXPECT_THROW(positiveNumber(p, "conf"), ArgError);
 }
 
 }  // namespace

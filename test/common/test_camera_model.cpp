@@ -49,5 +49,33 @@ TEST(CameraConfig, RejectsWrongDistortionLength) {
   EXPECT_THROW(cameraFromConfig(c.section("camera")), ConfigError);
 }
 
+// An impossible camera is an error naming the file and the key: cx 5000 for a 640-wide image once tracked a
+// whole sequence and reported ATE 2 m with exit 0.
+TEST(CameraConfig, RejectsImpossibleIntrinsicsNamingFileAndKey) {
+  const std::string good =
+      "{width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, "
+      "distortion: [0, 0, 0, 0, 0], depth_scale: 5000}";
+  EXPECT_NO_THROW(cameraFromConfig(Config::fromString("camera: " + good, "cam.yaml").section("camera")));
+  const std::pair<std::string, std::string> bad[] = {{"cx: 320", "cx: 5000"},
+                                                     {"cx: 320", "cx: -1"},
+                                                     {"cy: 240", "cy: 481"},
+                                                     {"fx: 500", "fx: .nan"},
+                                                     {"fy: 500", "fy: 0"},
+                                                     {"width: 640", "width: 0"},
+                                                     {"depth_scale: 5000", "depth_scale: -5"}};
+  for (const auto& [from, to] : bad) {
+    std::string yaml = good;
+    yaml.replace(yaml.find(from), from.size(), to);
+    const std::string key = to.substr(0, to.find(':'));
+    try {
+      cameraFromConfig(Config::fromString("camera: " + yaml, "cam.yaml").section("camera"));
+      ADD_FAILURE() << to << " was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("cam.yaml: key 'camera." + key + "'"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bmp

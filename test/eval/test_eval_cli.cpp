@@ -92,6 +92,21 @@ TEST(evalCli, HelpAndBadCommandLine) {
   EXPECT_NE(unit.err.find("unknown RPE delta unit 'm'"), std::string::npos) << unit.err;
 }
 
+// A delta or scale of zero or less gives figures that mean nothing (RPE 0.000 m over a zero interval): the
+// command line is refused (bmp-eval's exit 1 for a bad command line), naming the option and its range.
+TEST(evalCli, ValuesOutOfRangeAreRefusedNamingTheOption) {
+  const auto dir = bmp::test::scratchDir("eval_cli_range");
+  const std::pair<const char*, const char*> bad[] = {
+      {"rpe-delta", "0"}, {"rpe-delta", "-1"},  {"rpe-delta", "nan"}, {"scale", "0"},
+      {"scale", "-2"},    {"max-diff", "-0.1"}, {"offset", "inf"}};
+  for (const auto& [name, value] : bad) {
+    const CliRun r = runEval(dir, "--gt '" + gtPath() + "' --est '" + gtPath() + "' --" + name + " " + value);
+    EXPECT_EQ(r.status, 1) << name << " " << value << ": " << r.err;
+    EXPECT_NE(r.err.find(std::string("--") + name + " must be"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
 TEST(evalCli, BadInputIsOneLineNamingTheFileAndExitTwo) {
   const auto dir = bmp::test::scratchDir("eval_cli_bad");
   const std::string bad = (dir / "bad.txt").string();

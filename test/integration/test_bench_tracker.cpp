@@ -246,6 +246,20 @@ TEST(BenchTrackerDrops, AProbabilityOutOfRangeIsAnErrorNamingTheOption) {
   }
 }
 
+// A negative count is a usage error naming the option (exit 2), checked before any frame is read:
+// --frames -3 once tracked every frame.
+TEST(BenchTrackerOptions, NegativeCountsAreUsageErrorsNamingTheOption) {
+  for (const char* option : {"--frames", "--start", "--frame-gap-ms"}) {
+    const Outcome o = runCommand(
+        "negative", {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), option, "-3"}, kTimeoutS);
+    EXPECT_EQ(o.status, 2) << option << ": " << o.output;
+    EXPECT_NE(o.output.find(std::string(option) + " must be an integer from 0 to "), std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("got '-3'"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("skipped"), std::string::npos) << o.output;  // refused before the folder is read
+  }
+}
+
 // The benchmark reads folders as bmp-capture does: a camera file that does not fit the images skips every
 // frame, each named, and a run of no frames is an error naming the folder (as capture exits 1), not a
 // summary of zeros.

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
@@ -142,11 +143,15 @@ class PlanTool : public ::testing::Test {
     mapper::writeMapFiles(dir.string(), m);
   }
   int plan(const std::string& from, const std::string& to, std::string& output) {
+    return run({"--map", (dir / "occupancy.yaml").string(), "--from", from, "--to", to, "--robot-radius",
+                "0.1", "--out", (dir / "path.png").string(), "--path-out", (dir / "path.txt").string()},
+               output);
+  }
+  // bmp-plan with these arguments; its exit status, and what it printed in output.
+  int run(std::vector<std::string> arguments, std::string& output) {
     const std::string log = (dir / "plan.log").string();
-    ChildProcess child({test::binPath("bmp-plan"), "--map", (dir / "occupancy.yaml").string(), "--from", from,
-                        "--to", to, "--robot-radius", "0.1", "--out", (dir / "path.png").string(),
-                        "--path-out", (dir / "path.txt").string()},
-                       ChildProcess::Output::kFile, log);
+    arguments.insert(arguments.begin(), test::binPath("bmp-plan"));
+    ChildProcess child(std::move(arguments), ChildProcess::Output::kFile, log);
     const auto status = child.wait(30);
     std::ifstream in(log);
     std::stringstream text;
@@ -165,6 +170,25 @@ TEST_F(PlanTool, FindsAPathBetweenFreeCellsAndNoneBeyondTheWall) {
   EXPECT_NE(test::readFirstLine((dir / "path.txt").string()).find("# x y"), std::string::npos);
   EXPECT_EQ(plan("0,0.8", "0,4.0", out), 1) << out;  // behind the wall: unknown, and the wall is in the way
   EXPECT_NE(out.find("no path"), std::string::npos) << out;
+}
+
+// A value out of its range is a usage error naming the option (exit 2), not a plan with no robot or with
+// the first two of three numbers.
+TEST_F(PlanTool, OptionValuesOutOfRangeAreUsageErrorsNamingTheOption) {
+  const std::string map = (dir / "occupancy.yaml").string();
+  for (const char* radius : {"-1", "nan", "inf"}) {
+    std::string out;
+    EXPECT_EQ(run({"--map", map, "--from", "0,0.8", "--to", "0.6,2.2", "--robot-radius", radius}, out), 2)
+        << radius << ": " << out;
+    EXPECT_NE(out.find("--robot-radius"), std::string::npos) << out;
+  }
+  for (const char* to : {"0,2,3", "0.6", "0.6,", "nan,2", "0.6;2.2"}) {
+    std::string out;
+    EXPECT_EQ(run({"--map", map, "--from", "0,0.8", "--to", to}, out), 2) << to << ": " << out;
+    EXPECT_NE(out.find("--to"), std::string::npos) << out;
+  }
+  std::string out;
+  EXPECT_EQ(run({"--map", map, "--from", "0,0.8", "--to", "0.6,2.2", "--robot-radius", "0"}, out), 0) << out;
 }
 
 occupancy_grid_t gridMessage(int width, int height) {

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
 #include <stdexcept>
 #include <thread>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/config_dir.hpp"
 #include "bmp/common/memory_usage.hpp"
@@ -44,9 +46,20 @@ TrackerConfig loadConfig(const bmp::ArgParser& args) {
   return config;
 }
 
-// --frames N, or -1: every frame.
+constexpr long long kMaxIntOption = std::numeric_limits<int>::max();
+
+// --frames N, or -1: every frame (a negative N is refused, not taken as "every frame").
 int maxFrames(const bmp::ArgParser& args) {
-  return args.given("frames") ? static_cast<int>(args.integer("frames")) : -1;
+  return args.given("frames") ? static_cast<int>(bmp::integerIn(args, "frames", 0, kMaxIntOption)) : -1;
+}
+
+// --start N: frames skipped from the start of the folder.
+int startFrame(const bmp::ArgParser& args) {
+  return static_cast<int>(bmp::integerIn(args, "start", 0, kMaxIntOption));
+}
+
+std::chrono::milliseconds frameGap(const bmp::ArgParser& args) {
+  return std::chrono::milliseconds(bmp::integerIn(args, "frame-gap-ms", 0, kMaxIntOption));
 }
 
 // Progress every 100th frame (every frame with --verbose), then the --frame-gap-ms pause.
@@ -56,7 +69,7 @@ OfflineOptions offlineOptions(const bmp::ArgParser& args) {
   const bool verbose = args.flag("verbose");
   // A pause after each frame, as between frames of the pipeline: local mapping then has time to finish
   // (the pipeline's lockstep leaves it idle when the next frame arrives), which changes its timing.
-  const auto gap = std::chrono::milliseconds(args.integer("frame-gap-ms"));
+  const auto gap = frameGap(args);
   options.exclude_movers = args.flag("oracle-masks");
   options.on_result = [verbose, gap](const TrackResult& r, const OfflineFrame&) {
     if (gap.count() > 0) std::this_thread::sleep_for(gap);
@@ -236,7 +249,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
                           std::shared_ptr<const TrackResult> last, bool detect,
                           const DynamicOptions& dynamic) {
   const std::string dir = args.value("dataset");
-  const int start = static_cast<int>(args.integer("start"));
+  const int start = startFrame(args);
   const long long passes = args.integer("passes");
   if (passes < 1 || passes > 1000) throw bmp::ArgError("--passes must be between 1 and 1000");
   const long long lag = boxLag(args, detect);
@@ -319,6 +332,10 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
 }  // namespace
 
 int runBenchTracker(const bmp::ArgParser& args) {
+  // The counts checked before the camera and the folder are read (they are read again where used).
+  maxFrames(args);
+  startFrame(args);
+  frameGap(args);
   // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
   const bmp::capture::SequenceCamera selected =
       bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");

@@ -3,11 +3,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "annotate.hpp"
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/image_codec.hpp"
 #include "detector/detection_worker.hpp"
@@ -34,8 +36,10 @@ DetectorConfig loadConfig(const ArgParser& args, std::string& dynamic_path) {
   config.finish();
   if (args.given("dynamic-classes")) dynamic_path = args.value("dynamic-classes");
   if (args.given("model")) c = withModelPreset(c, args.value("model"));
-  if (args.given("conf")) c.conf_threshold = static_cast<float>(args.number("conf"));
-  if (args.given("threads")) c.threads = static_cast<int>(args.integer("threads"));
+  // A confidence is a probability: above 1 no box passes, below 0 every candidate does.
+  if (args.given("conf")) c.conf_threshold = static_cast<float>(numberIn(args, "conf", 0.0, 1.0));
+  if (args.given("threads"))
+    c.threads = static_cast<int>(integerIn(args, "threads", 1, std::numeric_limits<int>::max()));
   return c;
 }
 
@@ -69,7 +73,8 @@ int runDetect(const ArgParser& args) {
   const DetectorConfig config = loadConfig(args, dynamic_path);
   Detector detector(config, Config::fromFile(dynamic_path));
   const auto images = listImages(args.value("input"));
-  const long long limit = args.given("limit") ? args.integer("limit") : 0;
+  const long long limit =
+      args.given("limit") ? integerIn(args, "limit", 1, std::numeric_limits<long long>::max()) : 0;
 
   const std::string out_dir = args.value("out");
   std::optional<std::ofstream> jsonl;

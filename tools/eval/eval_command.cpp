@@ -3,8 +3,10 @@
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
+#include "bmp/common/arg_range.hpp"
 #include "eval/ate.hpp"
 #include "eval/eval_error.hpp"
 #include "eval/eval_input.hpp"
@@ -53,7 +55,11 @@ ArgParser makeEvalParser() {
 void checkEvalArgs(const ArgParser& args) {
   if (!args.given("gt") || !args.given("est"))
     throw ArgError("bmp-eval: --gt FILE and --est FILE are required (see --help)");
-  for (const char* name : {"max-diff", "offset", "scale", "rpe-delta"}) args.number(name);
+  // A zero or negative delta or scale gives numbers (RPE 0.000 m) that mean nothing.
+  numberIn(args, "max-diff", 0.0, std::numeric_limits<double>::infinity());
+  numberIn(args, "offset", -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  positiveNumber(args, "scale");
+  positiveNumber(args, "rpe-delta");
   parseDeltaUnit(args.value("rpe-unit"));
 }
 

@@ -1,10 +1,13 @@
 #include "plan_command.hpp"
 
+#include <cmath>
 #include <cstdio>
-#include <sstream>
+#include <cstdlib>
+#include <limits>
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/tool_main.hpp"
 #include "plan/live_grid.hpp"
@@ -14,12 +17,20 @@ namespace bmp::plan {
 
 namespace {
 
+// Exactly two finite numbers: "0,2,3" is a typo, not the point (0, 2).
 Eigen::Vector2d point(const ArgParser& args, const std::string& name) {
-  std::istringstream in(args.value(name));
-  double x = 0, y = 0;
-  char comma = 0;
-  if (!(in >> x >> comma >> y) || comma != ',') throw ArgError("--" + name + " must be X,Y in metres");
-  return {x, y};
+  const std::string text = args.value(name);
+  const std::size_t comma = text.find(',');
+  const std::string parts[2] = {text.substr(0, comma),
+                                comma == std::string::npos ? "" : text.substr(comma + 1)};
+  double xy[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    char* end = nullptr;
+    xy[i] = std::strtod(parts[i].c_str(), &end);
+    if (parts[i].empty() || *end != '\0' || !std::isfinite(xy[i]))
+      throw ArgError("--" + name + " must be X,Y (two numbers, metres), got '" + text + "'");
+  }
+  return {xy[0], xy[1]};
 }
 
 }  // namespace
@@ -28,7 +39,7 @@ int runPlan(const ArgParser& args) {
   if (args.given("map") == args.flag("live")) throw ArgError("give either --map FILE or --live");
   if (!args.given("from") || !args.given("to")) throw ArgError("--from and --to are required");
   PlanOptions options;
-  options.robot_radius_m = args.number("robot-radius");
+  options.robot_radius_m = numberIn(args, "robot-radius", 0.0, std::numeric_limits<double>::infinity());
   if (args.value("unknown") != "blocked" && args.value("unknown") != "free")
     throw ArgError("--unknown must be blocked or free");
   options.unknown_is_blocked = args.value("unknown") == "blocked";
