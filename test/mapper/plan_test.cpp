@@ -1,6 +1,7 @@
 // bmp-plan's A* on hand-made grids (walls, gaps, robot radius, unknown cells, corners), the map_server
 // reader on the mapper's own files, and the bmp-plan executable on a map the mapper wrote.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -189,6 +190,48 @@ TEST_F(PlanTool, OptionValuesOutOfRangeAreUsageErrorsNamingTheOption) {
   }
   std::string out;
   EXPECT_EQ(run({"--map", map, "--from", "0,0.8", "--to", "0.6,2.2", "--robot-radius", "0"}, out), 0) << out;
+}
+
+// Arguments are all checked before a grid is read: --live with a bad --to waited for a grid and said "no
+// grid" (3); an output folder that does not exist is a bad argument too.
+TEST_F(PlanTool, BadArgumentsAreSaidBeforeAnyGridIsAwaited) {
+  std::string out;
+  EXPECT_EQ(run({"--live", "--lcm-url", "memq://", "--from", "0,0", "--to", "abc", "--timeout", "2"}, out), 2)
+      << out;
+  EXPECT_NE(out.find("--to"), std::string::npos) << out;
+  EXPECT_EQ(out.find("no grid"), std::string::npos) << out;
+  EXPECT_EQ(run({"--live", "--lcm-url", "memq://", "--from", "0,0", "--to", "1,1", "--timeout", "2", "--out",
+                 (dir / "no_such_folder" / "p.png").string()},
+                out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--out"), std::string::npos) << out;
+  EXPECT_NE(out.find("no such folder"), std::string::npos) << out;
+}
+
+// A map file that is not there is said to be missing (yaml-cpp says "bad file"), exit 3; an output that
+// cannot be written has its own status (4), after the path is printed: 1 means "no path".
+TEST_F(PlanTool, AMissingMapAndAnUnwrittenOutputHaveTheirOwnStatus) {
+  std::string out;
+  const std::string missing = (dir / "missing.yaml").string();
+  EXPECT_EQ(run({"--map", missing, "--from", "0,0.8", "--to", "0.6,2.2"}, out), 3) << out;
+  EXPECT_NE(out.find(missing + ": no such file"), std::string::npos) << out;
+  // A name no file can take is a bad argument, found before planning.
+  const std::string too_long = (dir / (std::string(300, 'p') + ".txt")).string();
+  const std::string map = (dir / "occupancy.yaml").string();
+  EXPECT_EQ(run({"--map", map, "--from", "0,0.8", "--to", "0.6,2.2", "--path-out", too_long}, out), 2) << out;
+  EXPECT_NE(out.find("--path-out"), std::string::npos) << out;
+  // /proc takes no new file. As root its folder passes the check (access() grants root everything) and the
+  // write itself fails: status 4, after the path; otherwise the check refuses it.
+  const bool root = ::geteuid() == 0;
+  EXPECT_EQ(
+      run({"--map", map, "--from", "0,0.8", "--to", "0.6,2.2", "--path-out", "/proc/bmp_plan_path.txt"}, out),
+      root ? 4 : 2)
+      << out;
+  if (root) {
+    EXPECT_NE(out.find("path length"), std::string::npos) << out;
+    EXPECT_NE(out.find("not written"), std::string::npos) << out;
+  }
 }
 
 occupancy_grid_t gridMessage(int width, int height) {

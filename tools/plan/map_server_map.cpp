@@ -20,6 +20,10 @@ Eigen::Vector2d PlanGrid::centreOf(int col, int row) const {
 
 PlanGrid readMapServerMap(const std::string& yaml_path) {
   YAML::Node doc;
+  // yaml-cpp says "bad file" for both; a path that names nothing is the likelier mistake.
+  if (!std::filesystem::exists(yaml_path)) throw MapFileError(yaml_path + ": no such file");
+  if (std::filesystem::is_directory(yaml_path))
+    throw MapFileError(yaml_path + ": is a folder, not a map file");
   try {
     doc = YAML::LoadFile(yaml_path);
   } catch (const YAML::Exception& e) {
