@@ -6,6 +6,7 @@
 
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/config.hpp"
+#include "capture/tum_sequence.hpp"
 
 namespace bmp::capture {
 
@@ -31,6 +32,9 @@ std::string cameraFileFor(const std::string& sequence_dir, const std::string& ca
 
 SequenceCamera selectCamera(const std::string& sequence_dir, const std::string& camera_file,
                             const std::string& camera_config_dir) {
+  // The folder first: a mistyped folder is "no such folder", not a camera the folder's name cannot tell.
+  if (!std::filesystem::is_directory(sequence_dir))
+    throw SequenceError(sequence_dir + ": no such sequence folder");
   SequenceCamera out;
   out.file = camera_file.empty() ? cameraFileFor(sequence_dir, camera_config_dir) : camera_file;
   // How, read off the choice: cameraFileFor names the folder's camera.yaml as this path when it took it.

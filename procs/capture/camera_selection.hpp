@@ -17,7 +17,8 @@ struct SequenceCamera {
 };
 
 // The camera of a TUM folder: from camera_file when not empty, else as cameraFileFor chooses. Throws
-// ConfigError naming the folder when nothing fits, and the file and key when the file is wrong.
+// SequenceError when the folder does not exist, ConfigError naming the folder when nothing fits, and the
+// file and key when the file is wrong.
 SequenceCamera selectCamera(const std::string& sequence_dir, const std::string& camera_file,
                             const std::string& camera_config_dir);
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 namespace bmp::capture {
 
@@ -86,6 +87,9 @@ void readSelection(const ArgParser& args, const Checker& check, FrameSelection& 
   check(s.start >= 0, "", "start", "must not be negative");
   check(s.end >= -1, "", "end", "must be -1 (all) or a frame number");
   check(s.every >= 1, "", "every", "must be at least 1");
+  // An empty range plays nothing and ended as "published 0 frames", exit 1, without saying why.
+  check(s.end < 0 || s.end > s.start, "", "end",
+        "must be past --start " + std::to_string(s.start) + " (--end is one past the last frame played)");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "bmp/common/config.hpp"
 #include "capture/camera_selection.hpp"
+#include "capture/tum_sequence.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::capture {
@@ -33,6 +34,20 @@ TEST(CameraSelection, UnknownFolderIsAnErrorNamingIt) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find(dir), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("--camera"), std::string::npos) << e.what();
+  }
+}
+
+// A mistyped folder is said to be missing (as bmp-capture says), not "cannot tell which camera recorded it",
+// with or without --camera.
+TEST(CameraSelection, AMissingFolderIsSaidToBeMissing) {
+  const std::string dir = (test::scratchDir("camera_missing") / "no_such_run").string();
+  for (const std::string& camera : {std::string(), kCameras + "/tum_fr1.yaml"}) {
+    try {
+      selectCamera(dir, camera, kCameras);
+      ADD_FAILURE() << "a missing folder was accepted";
+    } catch (const SequenceError& e) {
+      EXPECT_EQ(std::string(e.what()), dir + ": no such sequence folder");
+    }
   }
 }
 

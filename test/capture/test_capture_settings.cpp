@@ -115,6 +115,24 @@ TEST(CaptureSettings, WrongOptionsNameTheOption) {
   }
 }
 
+// --start 10 --end 5 published nothing and exited 1 with "published 0 frames": the range is refused up
+// front, naming both options.
+TEST(CaptureSettings, AnEmptyFrameRangeIsRefusedNamingBothOptions) {
+  for (const char* end : {"5", "10"}) {
+    const Parsed p("{}", {"--start", "10", "--end", end});
+    try {
+      p.read();
+      ADD_FAILURE() << "--end " << end << " accepted";
+    } catch (const ArgError& e) {
+      EXPECT_NE(std::string(e.what()).find("--end '" + std::string(end) + "'"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("--start 10"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(Parsed("{}", {"--start", "10", "--end", "11"}).read());
+  EXPECT_NO_THROW(Parsed("{}", {"--start", "10"}).read());  // --end -1: to the end
+}
+
 TEST(CaptureSettings, LockstepNeedsAnAnswerChannelWhereverModeComesFrom) {
   // The file empties the list, the command line asks for lockstep: the file's key is what is wrong.
   EXPECT_NE(

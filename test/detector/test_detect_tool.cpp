@@ -44,5 +44,30 @@ TEST(DetectTool, AConfidenceOutsideZeroToOneIsAUsageErrorNamingTheOption) {
   EXPECT_NE(limit.output.find("--limit"), std::string::npos) << limit.output;
 }
 
+// A corrupt image in a folder stopped the run with a message naming no file: it is skipped with a warning
+// naming it, the rest are read, and the end says how many were skipped.
+TEST(DetectTool, ACorruptImageIsSkippedNamingItAndTheRestAreRead) {
+  const fs::path dir = test::scratchDir("images");
+  fs::copy_file(test::sharedPath("images/bus.jpg"), dir / "a.jpg");
+  fs::copy_file(test::sharedPath("images/zidane.jpg"), dir / "c.jpg");
+  {
+    std::ifstream in(test::sharedPath("images/person.jpg"), std::ios::binary);
+    std::string head(2000, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    std::ofstream(dir / "b.jpg", std::ios::binary) << head;  // cut inside its headers
+  }
+  const ToolRun r = detect({"--input", dir.string()});
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: " + (dir / "b.jpg").string() + ": "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("c: "), std::string::npos) << r.output;  // the image after it was read
+  EXPECT_NE(r.output.find("1 of 3 image(s) skipped"), std::string::npos) << r.output;
+
+  fs::remove(dir / "a.jpg");
+  fs::remove(dir / "c.jpg");
+  const ToolRun none = detect({"--input", dir.string()});
+  EXPECT_EQ(none.status, 1) << none.output;
+  EXPECT_NE(none.output.find(dir.string() + ": no image could be read"), std::string::npos) << none.output;
+}
+
 }  // namespace
 }  // namespace bmp

@@ -260,6 +260,27 @@ TEST(BenchTrackerOptions, NegativeCountsAreUsageErrorsNamingTheOption) {
   }
 }
 
+// --start past the end reads nothing, so nothing was skipped: it is said as such, not as "no frame could be
+// read (each skip is named above)".
+TEST(BenchTrackerOptions, AStartPastTheEndIsSaidAsSuch) {
+  const Outcome o =
+      runCommand("start_past_end",
+                 {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), "--start", "1000"}, kTimeoutS);
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--start 1000 is past the end of " + test::bonnDir()), std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("each skip is named above"), std::string::npos) << o.output;
+}
+
+// A folder that does not exist is said to be missing, not "cannot tell which camera recorded this folder".
+TEST(BenchTrackerOptions, AMissingFolderIsSaidToBeMissing) {
+  const std::string missing = (test::scratchDir("missing") / "no_such_run").string();
+  const Outcome o =
+      runCommand("missing_folder", {binPath("bmp-bench-tracker"), "--dataset", missing}, kTimeoutS);
+  EXPECT_NE(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find(missing + ": no such sequence folder"), std::string::npos) << o.output;
+}
+
 // The benchmark reads folders as bmp-capture does: a camera file that does not fit the images skips every
 // frame, each named, and a run of no frames is an error naming the folder (as capture exits 1), not a
 // summary of zeros.

@@ -244,6 +244,18 @@ long long boxLag(const bmp::ArgParser& args, bool detect) {
   return lag;
 }
 
+// The period of one pass, from the stamps of the folder read without its images. --start past the end is
+// refused here: nothing is read, so nothing is skipped, and "no frame could be read (each skip is named
+// above)" would send the reader looking for skips that were never named.
+double passPeriod(const std::string& dir, int start) {
+  const auto index = bmp::capture::indexSequence(dir);
+  if (static_cast<std::size_t>(start) >= index.frames.size())
+    throw bmp::ArgError("--start " + std::to_string(start) + " is past the end of " + dir + " (" +
+                        std::to_string(index.frames.size()) + " associated frames)");
+  return bmp::capture::loopPeriod(index.frames.front().rgb_stamp, index.frames.back().rgb_stamp,
+                                  static_cast<int64_t>(index.frames.size()));
+}
+
 // detect: --detector given and the dynamic stage on (with mode none the boxes would go unused).
 PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& camera,
                           std::shared_ptr<const TrackResult> last, bool detect,
@@ -266,13 +278,7 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
   FrameProvider first = tumFolderFrames(dir, camera, folder);
   folder.groundtruth = nullptr;
   folder.warn = false;  // the later passes read what the first has named
-  // The period, from the stamps of one pass read without its images.
-  const auto index = bmp::capture::indexSequence(dir);
-  const double period =
-      index.frames.empty()
-          ? 1.0
-          : bmp::capture::loopPeriod(index.frames.front().rgb_stamp, index.frames.back().rgb_stamp,
-                                     static_cast<int64_t>(index.frames.size()));
+  const double period = passPeriod(dir, start);
   for (long long p = 0; p < passes; ++p)
     for (const auto& pose : one_pass) {
       auto shifted = pose;

@@ -83,14 +83,23 @@ int runDetect(const ArgParser& args) {
     if (args.flag("jsonl")) jsonl.emplace(fs::path(out_dir) / "detections.jsonl");
   }
   std::cerr << "model " << detector.modelName() << ", " << images.size() << " image(s)\n";
-  long long done = 0;
+  long long done = 0, skipped = 0;
   for (const auto& image : images) {
     if (limit > 0 && done >= limit) break;
-    const FrameJob job = loadFrameJob(image.path);
-    const FrameResult result = processFrame(detector, job);
     ++done;
+    // A file that cannot be read or decoded is skipped and named, as bmp-capture skips bad files.
+    FrameJob job;
+    try {
+      job = loadFrameJob(image.path);
+    } catch (const ImageError& e) {
+      std::cerr << "warning: " << image.path << ": " << e.what() << "; skipped\n";
+      ++skipped;
+      continue;
+    }
+    const FrameResult result = processFrame(detector, job);
     if (!result.ok) {
-      std::cerr << image.path << ": " << result.error << "; skipped\n";
+      std::cerr << "warning: " << image.path << ": " << result.error << "; skipped\n";
+      ++skipped;
       continue;
     }
     const std::string json = detectionsJson(image.path, image.stamp, detector.modelName(), result.width,
@@ -98,6 +107,9 @@ int runDetect(const ArgParser& args) {
     printDetections(image, result);
     if (!out_dir.empty()) writeOutputs(out_dir, image, job.color, result, json, jsonl);
   }
+  if (skipped > 0) std::cerr << skipped << " of " << done << " image(s) skipped (each named above)\n";
+  // As bmp-capture, which exits 1 when it published nothing: no image read is no result.
+  if (done > 0 && skipped == done) throw std::runtime_error(args.value("input") + ": no image could be read");
   return 0;
 }
 
