@@ -281,6 +281,22 @@ TEST(BenchTrackerOptions, AMissingFolderIsSaidToBeMissing) {
   EXPECT_NE(o.output.find(missing + ": no such sequence folder"), std::string::npos) << o.output;
 }
 
+// An output that cannot be written is refused before the run: found after tracking the whole sequence, it
+// lost every result.
+TEST(BenchTrackerOptions, AnUnwritableOutputIsRefusedBeforeTracking) {
+  const std::string missing = (test::scratchDir("unwritable") / "no_such_folder").string();
+  for (const char* option : {"--trajectory", "--keyframe-trajectory", "--errors", "--frame-log"}) {
+    const Outcome o = runCommand(
+        "unwritable",
+        {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), option, missing + "/t.txt"}, kTimeoutS);
+    EXPECT_EQ(o.status, 2) << option << ": " << o.output;
+    EXPECT_NE(o.output.find(std::string(option) + " '" + missing + "/t.txt': no such folder"),
+              std::string::npos)
+        << o.output;
+    EXPECT_EQ(o.output.find("frames tracked"), std::string::npos) << o.output;
+  }
+}
+
 // The benchmark reads folders as bmp-capture does: a camera file that does not fit the images skips every
 // frame, each named, and a run of no frames is an error naming the folder (as capture exits 1), not a
 // summary of zeros.

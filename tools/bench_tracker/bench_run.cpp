@@ -15,6 +15,7 @@
 #include "bmp/common/config.hpp"
 #include "bmp/common/config_dir.hpp"
 #include "bmp/common/memory_usage.hpp"
+#include "bmp/common/output_path.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/looped_source.hpp"
 #include "capture/tum_sequence.hpp"
@@ -140,11 +141,12 @@ void writeErrors(const std::string& path, const bmp::eval::AteResult& ate) {
   std::fclose(out);
 }
 
-void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
-              const bmp::Trajectory& groundtruth) {
+// The ATE, printed; empty when there is none.
+std::optional<bmp::eval::AteResult> printAte(const bmp::Trajectory& estimate,
+                                             const bmp::Trajectory& groundtruth) {
   if (groundtruth.empty() || estimate.size() < 3) {
     std::printf("ATE              n/a (no ground truth or too few poses)\n");
-    return;
+    return std::nullopt;
   }
   const bmp::eval::AteResult ate = bmp::eval::computeAte(groundtruth, estimate);
   std::printf("ATE rmse m       %.4f\n", ate.stats.rmse);
@@ -152,7 +154,7 @@ void printAte(const bmp::ArgParser& args, const bmp::Trajectory& estimate,
   std::printf("ATE median m     %.4f\n", ate.stats.median);
   std::printf("ATE max m        %.4f\n", ate.stats.max);
   std::printf("ATE pairs        %zu\n", ate.pairs.size());
-  if (args.given("errors")) writeErrors(args.value("errors"), ate);
+  return ate;
 }
 
 // --passes N: the folder played N times as one forward stream (each pass's stamps shifted by the sequence's
@@ -342,6 +344,9 @@ int runBenchTracker(const bmp::ArgParser& args) {
   maxFrames(args);
   startFrame(args);
   frameGap(args);
+  // And the outputs: a path found unwritable only after tracking the whole sequence lost its results.
+  for (const char* option : {"trajectory", "keyframe-trajectory", "errors", "frame-log"})
+    bmp::checkOutputOption(args, option);
   // The same camera choice as bmp-capture's: --camera, else DIR/camera.yaml, else by the folder's name.
   const bmp::capture::SequenceCamera selected =
       bmp::capture::selectCamera(args.value("dataset"), args.value("camera"), bmp::configDir() + "/cameras");
@@ -394,13 +399,15 @@ int runBenchTracker(const bmp::ArgParser& args) {
   // As bmp-capture, which exits 1 when it published nothing: a benchmark of no frames is no result.
   if (result.frames == 0 && maxFrames(args) != 0)
     throw std::runtime_error(args.value("dataset") + ": no frame could be read (each skip is named above)");
-  const bmp::Trajectory& groundtruth = input.groundtruth;
+  // The results printed before any file is written: a write that fails anyway must not lose them.
+  printRunSummary(result, *times, *input.dropped);
+  const auto ate = printAte(result.trajectory, input.groundtruth);
+  if (score) printMaskScore(*scored);
+  std::fflush(stdout);
   if (args.given("trajectory")) bmp::writeTumTrajectory(args.value("trajectory"), result.trajectory);
   if (args.given("keyframe-trajectory"))
     bmp::writeTumTrajectory(args.value("keyframe-trajectory"), result.keyframe_trajectory);
-  printRunSummary(result, *times, *input.dropped);
-  printAte(args, result.trajectory, groundtruth);
-  if (score) printMaskScore(*scored);
+  if (ate && args.given("errors")) writeErrors(args.value("errors"), *ate);
   return 0;
 }
 
