@@ -1,7 +1,10 @@
 #include "bench_run.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -11,6 +14,7 @@
 #include "bmp/common/memory_usage.hpp"
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tool_main.hpp"
+#include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/synthetic_scene.hpp"
@@ -37,15 +41,49 @@ bool poseAt(const Trajectory& gt, double stamp, SE3& T) {
   return found;
 }
 
+// A Bonn RGB-D Dynamic folder, by the folder's or the camera file's name (as the camera is chosen).
+bool bonnSequence(const std::string& dir, const std::string& camera_file) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(dir).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();  // "dir/"
+  std::string name = folder.filename().string() + " " + fs::path(camera_file).stem().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  return name.find("bonn") != std::string::npos;
+}
+
+// The poses the keyframes are placed at: --poses, else the folder's ground truth. Bonn's ground truth is the
+// motion-capture marker body, about 176 degrees off the camera (README, "Reading the evaluation"): mapped
+// as camera poses each keyframe's cloud is turned about the marker and the map smears, so it is said.
+Trajectory keyframePoses(const ArgParser& args, const capture::SequenceIndex& index,
+                         const std::string& camera_file, bool warn) {
+  const std::string dir = args.value("dataset");
+  if (args.given("poses")) {
+    Trajectory poses = readTumTrajectory(args.value("poses"));
+    if (poses.empty()) throw std::runtime_error(args.value("poses") + ": no poses");
+    return poses;
+  }
+  if (index.groundtruth.empty())
+    throw std::runtime_error(dir + ": no groundtruth.txt (give camera poses with --poses FILE)");
+  if (warn && bonnSequence(dir, camera_file))
+    std::fprintf(stderr,
+                 "warning: %s: Bonn RGB-D Dynamic's groundtruth.txt is the pose of the motion-capture marker "
+                 "body, about 176 degrees off the camera, so a map built on it is smeared (the timing still "
+                 "holds); give --poses FILE with camera poses (a run's trajectory.txt, or bmp-bench-tracker "
+                 "--trajectory FILE) for a map to look at\n",
+                 dir.c_str());
+  return index.groundtruth;
+}
+
 // One pass over the sequence; loop numbers the pass, so a replayed frame gets a new keyframe id.
 // first: the first keyframe mapped (kept, as nothing came before it to merge into), for the rebuild timing.
 void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m,
              std::optional<PoseUpdate>& first) {
   capture::SequenceIndex index = capture::indexSequence(args.value("dataset"));
-  if (index.groundtruth.empty()) throw std::runtime_error(args.value("dataset") + ": no groundtruth.txt");
   const int64_t frames = static_cast<int64_t>(index.frames.size());
-  const CameraIntrinsics camera =
-      capture::selectCamera(args.value("dataset"), args.value("camera"), configDir() + "/cameras").intrinsics;
+  const capture::SequenceCamera selected =
+      capture::selectCamera(args.value("dataset"), args.value("camera"), configDir() + "/cameras");
+  const CameraIntrinsics& camera = selected.intrinsics;
+  const Trajectory poses = keyframePoses(args, index, selected.file, loop == 0);
   // bmp-capture's reader: a missing, corrupt or wrongly sized file is skipped and named, as in the pipeline.
   capture::TumSourceOptions options;
   options.selection.every = every;
@@ -59,7 +97,7 @@ void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m,
     KeyframeInput kf;
     kf.id = static_cast<int64_t>(loop) * frames + frame->index;
     kf.camera = camera;
-    if (!poseAt(source.index().groundtruth, frame->stamp, kf.T_world_cam)) continue;
+    if (!poseAt(poses, frame->stamp, kf.T_world_cam)) continue;
     try {
       kf.color = decodeImage(frame->color);
       kf.depth = decodeImage(frame->depth);
@@ -74,9 +112,9 @@ void feedTum(const ArgParser& args, int every, int limit, int loop, Mapper& m,
     fed += r.ok;
   }
   if (fed == 0 && limit > 0)
-    throw std::runtime_error(args.value("dataset") +
-                             ": no frame with a ground-truth pose could be read and integrated (each skip is "
-                             "named above)");
+    throw std::runtime_error(args.value("dataset") + ": no frame with a pose (" +
+                             (args.given("poses") ? args.value("poses") : std::string("groundtruth.txt")) +
+                             ") could be read and integrated (each skip is named above)");
 }
 
 void feedSynthetic(int every, int limit, int loop, Mapper& m, std::optional<PoseUpdate>& first) {
@@ -108,6 +146,7 @@ int runBenchMapper(const ArgParser& args) {
   const int loops = static_cast<int>(args.integer("loops"));
   if (loops < 1) throw ArgError("--loops must be at least 1");
   if (!args.flag("synthetic") && !args.given("dataset")) throw ArgError("give --dataset DIR or --synthetic");
+  if (args.given("poses") && !args.given("dataset")) throw ArgError("--poses needs --dataset DIR");
   Mapper m(settings);
   std::optional<PoseUpdate> first;
   // Each pass maps the same room again: with bounded memory the peak levels off after the first.
@@ -152,7 +191,12 @@ int runBenchMapper(const ArgParser& args) {
 }
 
 void addBenchMapperOptions(ArgParser& args) {
-  args.addOption("dataset", "DIR", "TUM-format folder with groundtruth.txt (keyframes get no masks)");
+  args.addOption("dataset", "DIR",
+                 "TUM-format folder; keyframes at its groundtruth.txt poses unless --poses (no masks)");
+  args.addOption(
+      "poses", "FILE",
+      "with --dataset: camera poses (TUM format, camera to world) instead of groundtruth.txt, e.g. "
+      "a run's trajectory.txt (Bonn's ground truth is its marker body's, not the camera's)");
   args.addFlag("synthetic", "use the built-in synthetic scene instead (ground-truth masks)");
   args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else by the folder's name");
   args.addOption("every", "N", "a keyframe every N frames", "10");
