@@ -28,7 +28,11 @@ void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
           "must lie inside the image (0 to width " + std::to_string(k.width) + "), got " + number(k.cx));
   c.check(std::isfinite(k.cy) && k.cy >= 0 && k.cy <= k.height, "cy",
           "must lie inside the image (0 to height " + std::to_string(k.height) + "), got " + number(k.cy));
-  for (double d : k.distortion) c.check(std::isfinite(d), "distortion", "must hold finite numbers");
+  for (double d : k.distortion) {
+    c.check(std::isfinite(d), "distortion", "must hold finite numbers");
+    c.check(std::abs(d) <= kMaxDistortionCoefficient, "distortion",
+            "coefficients must lie within +-10 (a lens's)");
+  }
 }
 
 }  // namespace

@@ -62,7 +62,8 @@ TEST(CameraConfig, RejectsImpossibleIntrinsicsNamingFileAndKey) {
                                                      {"fx: 500", "fx: .nan"},
                                                      {"fy: 500", "fy: 0"},
                                                      {"width: 640", "width: 0"},
-                                                     {"depth_scale: 5000", "depth_scale: -5"}};
+                                                     {"depth_scale: 5000", "depth_scale: -5"},
+                                                     {"distortion: [0, 0", "distortion: [1e300, 0"}};
   for (const auto& [from, to] : bad) {
     std::string yaml = good;
     yaml.replace(yaml.find(from), from.size(), to);
