@@ -43,4 +43,17 @@ inline Outcome runCommand(const std::string& name, std::vector<std::string> argv
   return o;
 }
 
+// A run.yaml for bmp-run with capture and the tracker only (lockstep, short drain and stop), written into
+// dir: its runs go under output_root, the tracker gets tracker_args. Returns the file's path.
+inline std::filesystem::path trackerOnlyRunConfig(const std::filesystem::path& dir,
+                                                  const std::filesystem::path& output_root,
+                                                  const std::string& tracker_args) {
+  const std::filesystem::path path = dir / "run.yaml";
+  std::ofstream(path) << "run:\n  output_root: " << output_root.string()
+                      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
+                      << "  processes:\n    bmp-tracker: [" << tracker_args << "]\n"
+                      << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+  return path;
+}
+
 }  // namespace bmp::test

@@ -45,11 +45,8 @@ std::size_t poses(const fs::path& trajectory) {
 // A terminal's Ctrl-C reaches bmp-run and every process of the run: sent here to each, bmp-run first.
 TEST(LauncherInterrupt, CtrlCStopsTheRunWithoutCallingItFailed) {
   const fs::path dir = test::scratchDir("launcher_interrupt");
-  std::ofstream(dir / "run.yaml")
-      << "run:\n  output_root: " << (dir / "root").string()
-      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
-      << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\", --frame-policy, every]\n"
-      << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+  test::trackerOnlyRunConfig(dir, dir / "root",
+                             "--trajectory, \"{out}/trajectory.txt\", --frame-policy, every");
   const fs::path out = dir / "run";
   const fs::path log = dir / "bmp-run.log";
   ChildProcess run({binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset", test::bonnDir(),

@@ -228,11 +228,7 @@ pid_t findProcess(const std::string& name, const std::string& marker) {
 // kept in the run folder and evaluated.
 TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
   const fs::path dir = test::scratchDir("launcher_killed_tracker");
-  std::ofstream(dir / "run.yaml")
-      << "run:\n  output_root: " << (dir / "out").string()
-      << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
-      << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\"]\n"
-      << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+  test::trackerOnlyRunConfig(dir, dir / "out", "--trajectory, \"{out}/trajectory.txt\"");
   const fs::path out = dir / "run";
   const fs::path log = dir / "bmp-run.log";
   ChildProcess run({binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset", test::bonnDir(),
@@ -270,11 +266,8 @@ struct KillableRun {
   fs::path dir, out, log;
   std::unique_ptr<ChildProcess> run;
   explicit KillableRun(const std::string& name, int slot) : dir(test::scratchDir(name)), out(dir / "run") {
-    std::ofstream(dir / "run.yaml")
-        << "run:\n  output_root: " << (dir / "out").string()
-        << "\n  mode: lockstep\n  drain_s: 0.2\n  stop_timeout_s: 5.0\n  evaluate: true\n"
-        << "  processes:\n    bmp-tracker: [--trajectory, \"{out}/trajectory.txt\", --frame-policy, every]\n"
-        << "  capture_args: [--ack-channels, SLAM_POSE]\n";
+    test::trackerOnlyRunConfig(dir, dir / "out",
+                               "--trajectory, \"{out}/trajectory.txt\", --frame-policy, every");
     log = dir / "bmp-run.log";
     run = std::make_unique<ChildProcess>(
         std::vector<std::string>{binPath("bmp-run"), "--config", (dir / "run.yaml").string(), "--dataset",
