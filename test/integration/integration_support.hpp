@@ -2,6 +2,7 @@
 // Helpers for tests that run the real processes over a real udpm:// LCM URL.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -41,6 +42,20 @@ inline Outcome runCommand(const std::string& name, std::vector<std::string> argv
   o.status = child.wait(timeout_s).value_or(-1);
   o.output = readText(log.string());
   return o;
+}
+
+// The pid of a running process (e.g. "bmp-tracker") whose command line mentions `marker` (its run folder), or
+// -1.
+inline pid_t findProcess(const std::string& name, const std::string& marker) {
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = readText((entry.path() / "cmdline").string());
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find("/" + name + " ") != std::string::npos && cmdline.find(marker) != std::string::npos)
+      return static_cast<pid_t>(std::stol(pid));
+  }
+  return -1;
 }
 
 // A run.yaml for bmp-run with capture and the tracker only (lockstep, short drain and stop), written into

@@ -4,7 +4,6 @@
 
 #include <signal.h>
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -20,19 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::binPath;
-
-// The pid of a running `name` whose command line mentions marker, or -1.
-pid_t findProcess(const std::string& name, const std::string& marker) {
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string pid = entry.path().filename().string();
-    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = test::readText((entry.path() / "cmdline").string());
-    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
-    if (cmdline.find("/" + name + " ") != std::string::npos && cmdline.find(marker) != std::string::npos)
-      return static_cast<pid_t>(std::stol(pid));
-  }
-  return -1;
-}
 
 std::size_t poses(const fs::path& trajectory) {
   try {
@@ -56,8 +42,8 @@ TEST(LauncherInterrupt, CtrlCStopsTheRunWithoutCallingItFailed) {
   while (poses(out / "trajectory.txt") < 20 && run.running() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_GE(poses(out / "trajectory.txt"), 20u) << test::readText(log.string());
-  const pid_t tracker = findProcess("bmp-tracker", out.string());
-  const pid_t capture = findProcess("bmp-capture", out.string());
+  const pid_t tracker = test::findProcess("bmp-tracker", out.string());
+  const pid_t capture = test::findProcess("bmp-capture", out.string());
   ASSERT_GT(tracker, 0);
   ASSERT_GT(capture, 0);
   run.signal(SIGINT);

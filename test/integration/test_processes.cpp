@@ -3,7 +3,6 @@
 
 #include <signal.h>
 
-#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -210,20 +209,6 @@ TEST(Launcher, FailingProcessFailsTheRun) {
   EXPECT_NE(o.output.find("bmp-test-listener ended early"), std::string::npos) << o.output;
 }
 
-// The pid of a running process (e.g. "bmp-tracker") whose command line mentions `marker` (its run folder), or
-// -1.
-pid_t findProcess(const std::string& name, const std::string& marker) {
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string pid = entry.path().filename().string();
-    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = test::readText((entry.path() / "cmdline").string());
-    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
-    if (cmdline.find("/" + name + " ") != std::string::npos && cmdline.find(marker) != std::string::npos)
-      return static_cast<pid_t>(std::stol(pid));
-  }
-  return -1;
-}
-
 // A tracker killed mid-run (SIGKILL: no chance to write on exit) fails the run, and its poses up to then are
 // kept in the run folder and evaluated.
 TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
@@ -246,7 +231,7 @@ TEST(Launcher, KilledTrackerFailsTheRunAndItsPosesAreKept) {
   while (poses() < 20 && run.running() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_GE(poses(), 20u) << test::readText(log.string());
-  const pid_t tracker = findProcess("bmp-tracker", out.string());
+  const pid_t tracker = test::findProcess("bmp-tracker", out.string());
   ASSERT_GT(tracker, 0) << "bmp-tracker not found";
   ASSERT_EQ(::kill(tracker, SIGKILL), 0);
 
@@ -296,7 +281,7 @@ struct KillableRun {
 TEST(Launcher, CaptureKilledMidRunStillEvaluates) {
   KillableRun r("launcher_killed_capture", 10);
   ASSERT_TRUE(r.waitForPoses(20)) << test::readText(r.log.string());
-  const pid_t capture = findProcess("bmp-capture", r.out.string());
+  const pid_t capture = test::findProcess("bmp-capture", r.out.string());
   ASSERT_GT(capture, 0) << "bmp-capture not found";
   ASSERT_EQ(::kill(capture, SIGKILL), 0);
   const int status = r.run->wait(120).value_or(-1);
@@ -311,8 +296,8 @@ TEST(Launcher, CaptureKilledMidRunStillEvaluates) {
 TEST(Launcher, KilledLauncherStopsItsChildrenCleanly) {
   KillableRun r("launcher_killed_itself", 11);
   ASSERT_TRUE(r.waitForPoses(20)) << test::readText(r.log.string());
-  const pid_t tracker = findProcess("bmp-tracker", r.out.string());
-  const pid_t capture = findProcess("bmp-capture", r.out.string());
+  const pid_t tracker = test::findProcess("bmp-tracker", r.out.string());
+  const pid_t capture = test::findProcess("bmp-capture", r.out.string());
   ASSERT_GT(tracker, 0);
   ASSERT_GT(capture, 0);
   EXPECT_NE(test::readFirstLine((r.out / "trajectory.txt").string()).find("live poses"), std::string::npos);
