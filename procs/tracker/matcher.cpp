@@ -246,7 +246,8 @@ int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoin
     w.gate = Gate::kReprojection;
     w.chi2 = chi2;
     const SearchResult s = searchByProjection(f, g, *p, mp->descriptor.ptr<uint8_t>(0), w);
-    if (s.best < 0 || s.best_dist > m.fuse_max_distance) continue;
+    // A keypoint on a mover takes no static point: its observation would join the point's in local BA.
+    if (s.best < 0 || s.best_dist > m.fuse_max_distance || kf->dynamic[s.best]) continue;
     const auto existing = kf->points[s.best];
     if (existing && !existing->bad) {
       if (existing->observations.size() >= mp->observations.size())

@@ -46,7 +46,9 @@ int matchByDescriptors(const Features& features, const std::vector<std::shared_p
                        double ratio, int max_distance, std::vector<std::shared_ptr<MapPoint>>& matches);
 
 // Projects points into kf: an unobserved keypoint gains the observation, an observed one is merged with
-// the point (the one with fewer observations is replaced). Returns merges + new observations.
+// the point (the one with fewer observations is replaced). A keypoint kf saw as dynamic takes no point:
+// its observation would join the point's in local BA (the paper keeps such keypoints out of the map).
+// Returns merges + new observations.
 int fusePoints(Map& map, KeyFrame* kf, const std::vector<std::shared_ptr<MapPoint>>& points,
                const FrameGeometry& g, const MatcherOptions& m, double radius, double chi2);
 

@@ -8,6 +8,8 @@
 #include <memory>
 
 #include "room_rig.hpp"
+#include "tracker/key_frame.hpp"
+#include "tracker/map.hpp"
 #include "tracker/map_point.hpp"
 #include "tracker/matcher.hpp"
 
@@ -91,6 +93,41 @@ TEST(ProjectionMatching, DepthAsNoisyAsASensorsStillMatches) {
   int expected = 0;
   for (const auto& mp : last.points) expected += mp != nullptr;
   EXPECT_GT(n, 0.9 * expected);
+}
+
+// Fusion projects the neighbours' points into a new keyframe. A keypoint the keyframe saw as dynamic (a
+// person's) must not take one: its observation would pull the static point, and the keyframe, in local BA.
+// The points here are the frame's own, so every keypoint with depth finds its point again.
+TEST(Fusion, AKeypointSeenAsDynamicTakesNoPoint) {
+  const Rig rig;
+  ASSERT_FALSE(rig.room.empty()) << "images missing under " << test::sharedDir();
+  const Frame source = withPoints(rig, rig.frame(0, false));
+  Frame frame = rig.frame(0, false);
+  const Features& f = *frame.features;
+  for (int i = 0; i < f.size(); ++i) frame.dynamic[i] = f.keys[i].pt.x < 320;  // a person on the left half
+  Map map;
+  auto kf = std::make_shared<KeyFrame>(map.newKeyFrameId(), frame);
+  map.addKeyFrame(kf);
+  std::vector<std::shared_ptr<MapPoint>> points;
+  for (const auto& mp : source.points)
+    if (mp) {
+      map.addPoint(mp);
+      points.push_back(mp);
+    }
+  const MatcherOptions m = rig.config.matcher;
+  const int fused = fusePoints(map, kf.get(), points, rig.g, m, 3.0, 7.81);
+  int on_dynamic = 0, on_static = 0, static_with_depth = 0;
+  for (int i = 0; i < f.size(); ++i) {
+    if (kf->dynamic[i]) {
+      on_dynamic += kf->points[i] != nullptr;
+    } else {
+      on_static += kf->points[i] != nullptr;
+      static_with_depth += f.hasDepth(i);
+    }
+  }
+  EXPECT_EQ(on_dynamic, 0);
+  EXPECT_GT(on_static, 0.9 * static_with_depth) << "the static half takes its points";
+  EXPECT_EQ(fused, on_static);
 }
 
 }  // namespace
