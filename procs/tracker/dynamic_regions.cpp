@@ -53,8 +53,8 @@ std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
 }
 
 std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
-                                     const std::vector<ObjectBox>& boxes,
-                                     const std::vector<int8_t>& verdict) {
+                                     const std::vector<ObjectBox>& boxes, const std::vector<int8_t>& verdict,
+                                     int min_moved) {
   std::vector<float> share(boxes.size(), 0.0f);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     int judged = 0, moved = 0;
@@ -63,7 +63,7 @@ std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
       ++judged;
       moved += verdict[k] > 0;
     }
-    share[i] = judged > 0 ? static_cast<float>(moved) / judged : 0.0f;
+    share[i] = moved >= std::max(1, min_moved) ? static_cast<float>(moved) / judged : 0.0f;
   }
   return share;
 }

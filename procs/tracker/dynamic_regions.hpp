@@ -50,9 +50,10 @@ std::vector<uint8_t> observeRegions(const std::vector<cv::KeyPoint>& keys,
                                     const std::vector<ObjectBox>& boxes, const std::vector<uint8_t>& moving);
 
 // Per box, the share of the keypoints inside it with a verdict (>= 0) whose verdict is 1 (moved); 0 when
-// none inside has one (for movingBoxes' moving_share).
+// fewer than min_moved moved (for movingBoxes' moving_share: a lone moved keypoint may be a mismatch).
 std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
-                                     const std::vector<ObjectBox>& boxes, const std::vector<int8_t>& verdict);
+                                     const std::vector<ObjectBox>& boxes, const std::vector<int8_t>& verdict,
+                                     int min_moved);
 
 // Boxes seen age_s before the frame they stand in for (real time: the frame's own answer has not come):
 // each high or medium box grown by growth_px_per_s * age_s on every side, as far as a mover may have gone

@@ -109,7 +109,8 @@ void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, co
   std::vector<float> share;
   // The keypoints' own evidence, not their posterior: that carries this box's earlier observations, so a
   // chair once counted as moving would keep itself moving.
-  if (last && last->features) share = movedShareInBoxes(last->features->keys, *boxes, last->moved);
+  if (last && last->features)
+    share = movedShareInBoxes(last->features->keys, *boxes, last->moved, options_.medium_min_moved);
   frame.box_z = boxObservation(*frame.features, *boxes, share);
   if (options_.mode != DynamicMode::kBoxes) return;
   // Boxes only: a keypoint in a moving box is dynamic in this frame, with no memory.

@@ -214,6 +214,7 @@ DynamicOptions dynamicOptions(const Config& c) {
   c.check(o.omega < 1.0, "omega", "must be below 1");
   readFraction(c, "medium_held_overlap", o.medium_held_overlap);
   readFraction(c, "medium_moving_keypoints", o.medium_moving_keypoints);
+  readAtLeast(c, "medium_min_moved", o.medium_min_moved, 1);
   readIn(c, "refine_core_fraction", o.refine_core_fraction, 0.05, 1.0);
   readPositive(c, "refine_band_m", o.refine_band_m);
   readAtLeast(c, "refine_band_ratio", o.refine_band_ratio, 0.0);

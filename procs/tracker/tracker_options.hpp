@@ -174,6 +174,8 @@ struct DynamicOptions {
   double medium_held_overlap = 0.5;
   // ... or when this share of the last frame's keypoints inside it were dynamic.
   double medium_moving_keypoints = 0.5;
+  // ... and at least this many of them moved: one keypoint's verdict may be a mismatch.
+  int medium_min_moved = 3;
   // Depth refinement: the person's depth is the median over the central core_fraction of the box; box
   // pixels within max(band_m, band_ratio * depth) of it are the person's, the rest is background.
   double refine_core_fraction = 0.4;

@@ -97,16 +97,25 @@ TEST(DynamicRegions, OverlappingPeopleAndMediumObjects) {
   const std::vector<cv::KeyPoint> keys = {at(85, 50), at(70, 50), at(420, 320), at(95, 15)};
   EXPECT_EQ(observeRegions(keys, boxes, moving), (std::vector<uint8_t>{1, 1, 0, 0}));
   // The chair becomes moving when most of its keypoints the geometric observation judged were seen moving
-  // (a keypoint without a verdict, -1, does not count either way).
+  // (a keypoint without a verdict, -1, does not count either way), and at least min_moved of them.
   const std::vector<cv::KeyPoint> chair_keys = {at(410, 310), at(420, 320), at(430, 330), at(440, 340),
-                                                at(10, 200)};
-  const auto share = movedShareInBoxes(chair_keys, boxes, {1, 1, 0, -1, 1});
-  EXPECT_NEAR(share[3], 2.0 / 3.0, 1e-6);
+                                                at(450, 350), at(460, 360), at(10, 200)};
+  const int min_moved = 3;
+  const auto share = movedShareInBoxes(chair_keys, boxes, {1, 1, 0, -1, 1, 0, 1}, min_moved);
+  EXPECT_NEAR(share[3], 3.0 / 5.0, 1e-6);
   EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, share)[3], 1);
   // Once it stands still, its keypoints are where they should be, and its box no longer counts.
-  const auto still = movedShareInBoxes(chair_keys, boxes, {0, 0, 1, -1, 1});
-  EXPECT_NEAR(still[3], 1.0 / 3.0, 1e-6);
+  const auto still = movedShareInBoxes(chair_keys, boxes, {0, 0, 1, -1, 0, 0, 1}, min_moved);
+  EXPECT_EQ(still[3], 0.0f);
   EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, still)[3], 0);
+  // A still chair with one keypoint judged, and that one a mismatch seen moving: one verdict is no evidence.
+  const auto lone = movedShareInBoxes(chair_keys, boxes, {1, -1, -1, -1, -1, -1, 1}, min_moved);
+  EXPECT_EQ(lone[3], 0.0f);
+  EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, lone)[3], 0);
+  EXPECT_EQ(movingBoxes(boxes, RegionOptions{},
+                        movedShareInBoxes(chair_keys, boxes, {1, -1, -1, -1, -1, -1, 1}, 1))[3],
+            1)
+      << "without the minimum the lone verdict counts";
 }
 
 // Real time: boxes 0.2 s old stand in for a frame's own; a person walking out of the old box is caught by the

@@ -143,6 +143,7 @@ void printDynamic(const TrackerConfig& c, FieldPrinter& put) {
   put("dynamic.threshold", d.threshold);
   put("dynamic.medium_held_overlap", d.medium_held_overlap);
   put("dynamic.medium_moving_keypoints", d.medium_moving_keypoints);
+  put("dynamic.medium_min_moved", d.medium_min_moved);
   put("dynamic.refine_core_fraction", d.refine_core_fraction);
   put("dynamic.refine_band_m", d.refine_band_m);
   put("dynamic.refine_band_ratio", d.refine_band_ratio);
