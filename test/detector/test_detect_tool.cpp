@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "bmp/common/child_process.hpp"
+#include "run_command.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
@@ -16,19 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
+using ToolRun = test::Outcome;
 
 ToolRun detect(std::vector<std::string> arguments) {
-  const std::string log = (test::scratchDir("detect_run") / "out.log").string();
   arguments.insert(arguments.begin(), test::binPath("bmp-detect"));
-  ChildProcess child(std::move(arguments), ChildProcess::Output::kFile, log);
-  ToolRun r;
-  r.status = child.wait(120).value_or(-1);
-  r.output = test::readText(log);
-  return r;
+  return test::runCommand("detect_run", std::move(arguments), 120);
 }
 
 // A confidence is a probability: --conf 5 found no box and --conf -1 every candidate, both without a word.

@@ -11,6 +11,7 @@
 
 #include "bmp/common/child_process.hpp"
 #include "lcm_url.hpp"
+#include "run_command.hpp"
 #include "shared_data.hpp"
 
 namespace bmp::test {
@@ -27,21 +28,6 @@ inline std::vector<ReportLine> readReport(const std::string& path) {
   while (in >> r.seq >> r.utime >> r.depth_utime >> r.color_bytes >> r.depth_bytes >> r.decoded)
     lines.push_back(r);
   return lines;
-}
-
-// A command run to its end (or killed after timeout_s): its exit status (-1: timed out) and its output.
-struct Outcome {
-  int status = -1;
-  std::string output;
-};
-
-inline Outcome runCommand(const std::string& name, std::vector<std::string> argv, double timeout_s = 60) {
-  const std::filesystem::path log = scratchDir("cmd_" + name) / "out.log";
-  ChildProcess child(std::move(argv), ChildProcess::Output::kFile, log.string());
-  Outcome o;
-  o.status = child.wait(timeout_s).value_or(-1);
-  o.output = readText(log.string());
-  return o;
 }
 
 // The pid of a running process (e.g. "bmp-tracker") whose command line mentions `marker` (its run folder), or

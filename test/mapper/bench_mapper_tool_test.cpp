@@ -7,28 +7,20 @@
 #include <utility>
 #include <vector>
 
-#include "bmp/common/child_process.hpp"
+#include "run_command.hpp"
 #include "shared_data.hpp"
 
 namespace bmp {
 namespace {
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
+using ToolRun = test::Outcome;
 
 // Two keyframes far apart on Bonn: enough to map, quick.
 ToolRun benchMapper(const std::vector<std::string>& extra) {
-  const std::string log = (test::scratchDir("bench_mapper") / "out.log").string();
   std::vector<std::string> arguments = {
       test::binPath("bmp-bench-mapper"), "--dataset", test::bonnDir(), "--every", "100", "--keyframes", "2"};
   arguments.insert(arguments.end(), extra.begin(), extra.end());
-  ChildProcess child(std::move(arguments), ChildProcess::Output::kFile, log);
-  ToolRun r;
-  r.status = child.wait(120).value_or(-1);
-  r.output = test::readText(log);
-  return r;
+  return test::runCommand("bench_mapper", std::move(arguments), 120);
 }
 
 // Bonn's ground truth is its marker body's pose, about 176 degrees off the camera (README): a map built on
