@@ -1,6 +1,7 @@
 #include "bmp/common/tool_main.hpp"
 
 #include <iostream>
+#include <string>
 
 #include "bmp/common/config.hpp"
 
@@ -14,7 +15,8 @@ int runTool(ArgParser& args, int argc, char** argv, const std::function<int(cons
     }
     return body(args);
   } catch (const ArgError& e) {
-    std::cerr << e.what() << " (see --help)\n";
+    const std::string message = e.what();
+    std::cerr << message << (message.find("see --help") == std::string::npos ? " (see --help)" : "") << "\n";
     return 2;
   } catch (const ConfigError& e) {
     std::cerr << args.program() << ": configuration error: " << e.what() << "\n";

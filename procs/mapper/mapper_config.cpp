@@ -35,7 +35,8 @@ CloudSettings readCloud(const Config& c) {
   c.check(s.max_depth_m > s.min_depth_m && std::isfinite(s.max_depth_m), "max_depth_m",
           "must exceed min_depth_m");
   c.check(s.mask_dilation_px >= 0 && s.mask_dilation_px <= 100, "mask_dilation_px", "must be in 0..100");
-  c.check(s.pixel_step >= 1 && s.pixel_step <= 16, "pixel_step", "must be in 1..16");
+  c.check(s.pixel_step >= 1 && s.pixel_step <= CloudSettings::kMaxPixelStep, "pixel_step",
+          "must be in 1.." + std::to_string(CloudSettings::kMaxPixelStep));
   positive(c, "keyframe_voxel_m", s.keyframe_voxel_m);
   positive(c, "map_voxel_m", s.map_voxel_m);
   positive(c, "viewer_voxel_m", s.viewer_voxel_m);

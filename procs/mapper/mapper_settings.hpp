@@ -7,10 +7,11 @@ namespace bmp::mapper {
 
 // Which pixels of a keyframe become map points.
 struct CloudSettings {
-  double min_depth_m = 0.3;        // nearer depth is dropped (sensor noise, the robot itself)
-  double max_depth_m = 5.0;        // farther depth is dropped (noise grows with depth squared)
-  int mask_dilation_px = 5;        // dynamic mask grown by this many pixels: mask edges miss the mover's rim
-  int pixel_step = 1;              // back-project every Nth pixel in each direction
+  double min_depth_m = 0.3;  // nearer depth is dropped (sensor noise, the robot itself)
+  double max_depth_m = 5.0;  // farther depth is dropped (noise grows with depth squared)
+  int mask_dilation_px = 5;  // dynamic mask grown by this many pixels: mask edges miss the mover's rim
+  int pixel_step = 1;        // back-project every Nth pixel in each direction (1..kMaxPixelStep)
+  static constexpr int kMaxPixelStep = 16;
   double keyframe_voxel_m = 0.02;  // voxel filter of one keyframe's cloud (camera frame)
   double map_voxel_m = 0.02;       // voxel filter of the stitched global cloud
   double viewer_voxel_m = 0.05;    // the down-sampled cloud published for viewers

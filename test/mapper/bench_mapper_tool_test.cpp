@@ -49,5 +49,20 @@ TEST(BenchMapperTool, BonnsGroundTruthIsWarnedAboutAndCameraPosesCanBeGiven) {
   EXPECT_NE(missing.output.find(poses + ".missing"), std::string::npos) << missing.output;
 }
 
+// Counts below one (--every 0 divided by zero, --pixel-step 0 looped for ever) are usage errors naming the
+// option, before the sequence is read.
+TEST(BenchMapperTool, CountsOutOfRangeAreUsageErrors) {
+  for (const char* option : {"--every", "--loops", "--keyframes", "--pixel-step"}) {
+    const ToolRun r = benchMapper({option, "0"});
+    EXPECT_EQ(r.status, 2) << option << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(option) + " must be an integer from 1 to"), std::string::npos)
+        << r.output;
+  }
+  const ToolRun step = benchMapper({"--pixel-step", "17"});
+  EXPECT_EQ(step.status, 2) << step.output;
+  EXPECT_NE(step.output.find("--pixel-step must be an integer from 1 to 16"), std::string::npos)
+      << step.output;
+}
+
 }  // namespace
 }  // namespace bmp

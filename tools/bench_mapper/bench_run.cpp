@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/image_codec.hpp"
 #include "bmp/common/memory_usage.hpp"
@@ -26,6 +27,8 @@
 namespace bmp::mapper {
 
 namespace {
+
+constexpr long long kMaxCount = 1000000;  // keyframes, loops, frame step: beyond any real sequence
 
 // The ground-truth pose nearest in time (within 0.02 s), or false.
 bool poseAt(const Trajectory& gt, double stamp, SE3& T) {
@@ -135,16 +138,17 @@ int runBenchMapper(const ArgParser& args) {
   MapperSettings settings = mapperSettingsFromConfig(file.section("mapper"));
   file.ignore("process");
   file.finish();
-  if (args.given("pixel-step")) settings.cloud.pixel_step = static_cast<int>(args.integer("pixel-step"));
+  if (args.given("pixel-step"))
+    settings.cloud.pixel_step =
+        static_cast<int>(integerIn(args, "pixel-step", 1, CloudSettings::kMaxPixelStep));
   if (args.flag("synthetic")) {  // the synthetic world: z up, floor at 0
     settings.grid.up = {0, 0, 1};
     settings.grid.height_max_m = 1.9;
   }
-  const int every = static_cast<int>(args.integer("every"));
-  const int limit = args.given("keyframes") ? static_cast<int>(args.integer("keyframes")) : 1 << 30;
-  if (every < 1) throw ArgError("--every must be at least 1");
-  const int loops = static_cast<int>(args.integer("loops"));
-  if (loops < 1) throw ArgError("--loops must be at least 1");
+  const int every = static_cast<int>(integerIn(args, "every", 1, kMaxCount));
+  const int limit =
+      args.given("keyframes") ? static_cast<int>(integerIn(args, "keyframes", 1, kMaxCount)) : 1 << 30;
+  const int loops = static_cast<int>(integerIn(args, "loops", 1, kMaxCount));
   if (!args.flag("synthetic") && !args.given("dataset")) throw ArgError("give --dataset DIR or --synthetic");
   if (args.given("poses") && !args.given("dataset")) throw ArgError("--poses needs --dataset DIR");
   Mapper m(settings);

@@ -13,6 +13,7 @@
 
 #include <bmp/process_status_t.hpp>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/log.hpp"
@@ -29,6 +30,8 @@ namespace bmp::launcher {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr long long kMaxFrames = 100000000, kMaxLoops = 1000000;
 
 struct Launched {
   std::string name;
@@ -78,17 +81,10 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   require(!args.given("mode") || isCaptureMode(request.mode), args, "mode",
           "must be lockstep, realtime or fast");
   request.speed = args.value("speed");
-  if (args.given("speed")) {
-    const double speed = args.number("speed");
-    require(std::isfinite(speed) && speed > 0, args, "speed", "must be a positive number");
-  }
-  request.frames = args.given("frames") ? args.integer("frames") : -1;
-  require(!args.given("frames") || request.frames >= 1, args, "frames", "must be at least 1");
+  if (args.given("speed")) positiveNumber(args, "speed");
+  request.frames = args.given("frames") ? integerIn(args, "frames", 1, kMaxFrames) : -1;
   request.loops = args.value("loop");
-  if (args.given("loop")) {
-    const long long loops = args.integer("loop");
-    require(loops >= 1 && loops <= 1000000, args, "loop", "must be between 1 and 1000000");
-  }
+  if (args.given("loop")) integerIn(args, "loop", 1, kMaxLoops);
   request.lcm_url = resolveLcmUrl(args.value("lcm-url"));
   request.bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   request.out_dir = args.given("out")

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/config.hpp"
 #include "bmp/common/log.hpp"
 #include "bmp/common/timing.hpp"
@@ -13,6 +14,8 @@
 namespace bmp::synth {
 
 namespace {
+
+constexpr long long kMaxFrames = 1000000;  // over 9 hours at 30 Hz
 
 constexpr const char* kDefaultConfig = "config/synthetic.yaml";
 
@@ -43,7 +46,7 @@ capture::SyntheticSceneConfig sceneConfig(const ArgParser& args) {
   } else {
     log::warn("no ", config_path, " here: using the built-in defaults");
   }
-  if (args.given("frames")) config.num_frames = static_cast<int>(args.integer("frames"));
+  if (args.given("frames")) config.num_frames = static_cast<int>(integerIn(args, "frames", 1, kMaxFrames));
   if (args.given("seed")) config.seed = args.integer("seed");
   if (args.flag("static")) config.num_moving_objects = 0;
   return config;
