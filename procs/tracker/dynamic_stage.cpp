@@ -90,12 +90,13 @@ std::vector<int8_t> DynamicStage::boxObservation(const Features& f, const std::v
     const cv::Point2f& p = f.keys[k].pt;
     bool in_low = false;
     for (const auto& b : boxes) in_low = in_low || (b.level == DynamicLevel::kLow && inside(b.box, p));
-    if (in_low) continue;
     for (const auto& r : regions) {
-      // Without depth a keypoint in the box counts as the mover's (the conservative side).
-      const bool in_band =
-          r.far_m <= 0 || f.depth[k] <= 0 || (f.depth[k] >= r.near_m && f.depth[k] <= r.far_m);
-      if (inside(r.box, p) && in_band) {
+      // At the mover's depth a keypoint is the mover's even in a low box (a person in front of a TV); without
+      // a depth, a low box vetoes as in the paper, and otherwise the keypoint counts as the mover's (the
+      // conservative side).
+      const bool has_depth = r.far_m > 0 && f.depth[k] > 0;
+      const bool at_mover = has_depth && f.depth[k] >= r.near_m && f.depth[k] <= r.far_m;
+      if (inside(r.box, p) && (at_mover || (!has_depth && !in_low))) {
         z[k] = 1;
         break;
       }
