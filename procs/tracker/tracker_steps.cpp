@@ -7,6 +7,7 @@
 #include "tracker/frame_pose.hpp"
 #include "tracker/matcher.hpp"
 #include "tracker/relocalizer.hpp"
+#include "tracker/temporary_points.hpp"
 #include "tracker/tracker.hpp"
 
 namespace bmp::tracker {
@@ -18,20 +19,10 @@ void Tracker::prepareLastFrame() {
     if (mp && (mp->bad || mp->temporary())) mp.reset();
   }
   if (reference_kf_) last_frame_.setPose(map_.trajectoryPose(reference_kf_->id) * last_T_ref_cam_);
-  // Optionally, close keypoints of the last frame without a map point become temporary points, so the
-  // motion model has enough to match where the map is thin. They never enter the map. Off by default: they
-  // favour near (often moving) structure, and the map alone tracks better in dynamic scenes.
-  if (config_.tracking.temporal_points <= 0) return;
-  const Features& f = *last_frame_.features;
-  int count = 0;
-  for (int i : f.nearestWithDepth()) {
-    if (count >= config_.tracking.temporal_points) break;
-    ++count;
-    if (last_frame_.points[i]) continue;
-    const Eigen::Vector3d p = last_frame_.T_world_cam() * geometry_->camera.backProject(f.un[i], f.depth[i]);
-    last_frame_.points[i] = std::make_shared<MapPoint>(-1, p, f.descriptors.row(i), -1);
-    last_frame_.outlier[i] = 0;
-  }
+  // Off by default: temporary points favour near (often moving) structure, and the map alone tracks better
+  // in dynamic scenes.
+  if (config_.tracking.temporal_points > 0)
+    addTemporaryPoints(last_frame_, *geometry_, config_.tracking.temporal_points);
 }
 
 void Tracker::optimizePose(Frame& frame, double* position_std_m) {
