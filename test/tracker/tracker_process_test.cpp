@@ -367,5 +367,40 @@ TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
   EXPECT_EQ(log.find("answer for frame 5"), std::string::npos) << log;
 }
 
+// A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"
+// against the new stream. Against the old stream's seq (the largest seen, as before), a forged answer for
+// seq 1500 was taken, and with others like it would have pushed the real answers out of the book.
+TEST(TrackerProcess, AfterACaptureRestartAnswersAreJudgedAgainstTheNewStream) {
+  TrackerUnderTest t("tracker_restart_answers", 6);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 10; ++i) {
+    rgbd_frame_t msg = t.frame(i);
+    msg.seq = 2000 + i;
+    ASSERT_TRUE(t.publishAndWait(msg)) << "no pose for " << i;
+  }
+  for (int i = 10; i < 20;
+       ++i) {  // the restarted capture: seq 0 on, its first frames refused until it resyncs
+    rgbd_frame_t msg = t.frame(i);
+    msg.seq = i - 10;
+    ASSERT_TRUE(t.publishAndWait(msg)) << "no pose for " << i;
+  }
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK));
+  detections_t forged{};
+  forged.seq = 1500;
+  forged.utime = t.frame(19).utime + 1000000;
+  forged.model = "forged";
+  forged.image_width = 640;
+  forged.image_height = 480;
+  t.publish("DETECTIONS", forged);
+  for (int i = 20; i < 23; ++i) {
+    rgbd_frame_t msg = t.frame(i);
+    msg.seq = i - 10;
+    ASSERT_TRUE(t.publishAndWait(msg)) << "no pose for " << i;
+  }
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("answer for frame 1500, far ahead of the newest frame 9"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace bmp
