@@ -1,7 +1,5 @@
 #include "tracker/held_boxes.hpp"
 
-#include <cmath>
-
 #include "bmp/common/box_overlap.hpp"
 
 namespace bmp::tracker {
@@ -19,47 +17,6 @@ cv::Rect2f HeldBoxes::Held::at(double stamp_s) const {
   return {box.box.x + velocity.x * dt, box.box.y + velocity.y * dt, box.box.width, box.box.height};
 }
 
-int HeldBoxes::partnerOf(const ObjectBox& b, double stamp_s, const std::vector<bool>& taken) const {
-  int partner = -1;
-  double best = partner_iou_;
-  for (std::size_t h = 0; h < held_.size(); ++h) {
-    if (taken[h] || held_[h].box.class_id != b.class_id) continue;
-    const double overlap = iou(held_[h].at(stamp_s), b.box);
-    if (overlap >= best) {
-      best = overlap;
-      partner = static_cast<int>(h);
-    }
-  }
-  return partner;
-}
-
-std::vector<ObjectBox> HeldBoxes::completeLate(const std::vector<ObjectBox>& boxes, double stamp_s) {
-  if (hold_s_ <= 0.0) return boxes;
-  if (stamp_s >= last_s_) return *complete(boxes, stamp_s);
-  std::vector<bool> taken(held_.size(), false);
-  for (const ObjectBox& b : boxes) {
-    if (b.level != DynamicLevel::kHigh) continue;
-    const int partner = partnerOf(b, stamp_s, taken);
-    if (partner >= 0) taken[partner] = true;
-  }
-  std::vector<ObjectBox> completed = boxes;
-  for (const std::size_t h : missedAt(stamp_s, taken)) completed.push_back(held_[h].boxAt(stamp_s));
-  return completed;
-}
-
-std::vector<std::size_t> HeldBoxes::missedAt(double stamp_s, const std::vector<bool>& taken) const {
-  std::vector<std::size_t> missed;
-  for (std::size_t h = 0; h < held_.size(); ++h)
-    if (!taken[h] && held_[h].moving && std::abs(stamp_s - held_[h].found_s) <= hold_s_) missed.push_back(h);
-  return missed;
-}
-
-ObjectBox HeldBoxes::Held::boxAt(double stamp_s) const {
-  ObjectBox moved = box;
-  moved.box = at(stamp_s);
-  return moved;
-}
-
 std::optional<std::vector<ObjectBox>> HeldBoxes::complete(const std::optional<std::vector<ObjectBox>>& boxes,
                                                           double stamp_s) {
   if (hold_s_ <= 0.0 || !boxes) return boxes;
@@ -72,7 +29,16 @@ std::optional<std::vector<ObjectBox>> HeldBoxes::complete(const std::optional<st
   std::vector<Held> found;
   for (const ObjectBox& b : *boxes) {
     if (b.level != DynamicLevel::kHigh) continue;
-    const int partner = partnerOf(b, stamp_s, taken);
+    int partner = -1;
+    double best = partner_iou_;
+    for (std::size_t h = 0; h < held_.size(); ++h) {
+      if (taken[h] || held_[h].box.class_id != b.class_id) continue;
+      const double overlap = iou(held_[h].at(stamp_s), b.box);
+      if (overlap >= best) {
+        best = overlap;
+        partner = static_cast<int>(h);
+      }
+    }
     Held now{b, stamp_s, {0.0f, 0.0f}, false};
     if (partner >= 0) {
       taken[partner] = true;
@@ -87,9 +53,13 @@ std::optional<std::vector<ObjectBox>> HeldBoxes::complete(const std::optional<st
   }
 
   std::optional<std::vector<ObjectBox>> completed = boxes;
-  for (const std::size_t h : missedAt(stamp_s, taken)) {
-    completed->push_back(held_[h].boxAt(stamp_s));
-    found.push_back(held_[h]);  // still held, as last found: a held box never refreshes itself
+  for (std::size_t h = 0; h < held_.size(); ++h) {
+    const Held& missed = held_[h];
+    if (taken[h] || !missed.moving || stamp_s - missed.found_s > hold_s_) continue;
+    ObjectBox box = missed.box;
+    box.box = missed.at(stamp_s);
+    completed->push_back(box);
+    found.push_back(missed);  // still held, as last found: a held box never refreshes itself
   }
   held_ = std::move(found);
   return completed;

@@ -26,11 +26,6 @@ class HeldBoxes {
   // Frames come in time order; a stamp that goes back forgets every held box.
   std::optional<std::vector<ObjectBox>> complete(const std::optional<std::vector<ObjectBox>>& boxes,
                                                  double stamp_s);
-  // A late answer (real time: it came after its frame was tracked). Not older than the answers before it,
-  // it is complete()'s next answer, held boxes learn from it too. Older (a later frame's answer came
-  // first), it is completed with each held box as it stands moved back to stamp_s, while that lies within
-  // hold_s of when it was last found, and changes nothing held.
-  std::vector<ObjectBox> completeLate(const std::vector<ObjectBox>& boxes, double stamp_s);
 
  private:
   struct Held {
@@ -39,15 +34,7 @@ class HeldBoxes {
     cv::Point2f velocity;  // image pixels per second, from the two answers before
     bool moving = false;   // found in two answers in a row: its speed is known and it may be held
     cv::Rect2f at(double stamp_s) const;
-    ObjectBox boxAt(double stamp_s) const;  // the box, moved to stamp_s
   };
-
-  // The held box (not yet taken) that b is: same class, overlapping where that one would be at stamp_s by
-  // at least partner_iou (the most); -1 for none.
-  int partnerOf(const ObjectBox& b, double stamp_s, const std::vector<bool>& taken) const;
-
-  // The held boxes not taken that may stand in at stamp_s: moving, and found within hold_s of it.
-  std::vector<std::size_t> missedAt(double stamp_s, const std::vector<bool>& taken) const;
 
   double hold_s_;
   double partner_iou_;

@@ -113,14 +113,12 @@ class Tracker {
     motion_prior_.reset();
   }
   // Boxes that came after their frame was tracked: if that frame made a keyframe, its keypoints and map
-  // points take the observation, with the persons held then added (HeldBoxes::completeLate). Returns whether
-  // a keyframe of that seq was found. For one stream of frames (offline runs); a process whose capture may
-  // restart (seq from 0 again) names the keyframe by id.
+  // points take the observation. Returns whether a keyframe of that seq was found. For one stream of frames
+  // (offline runs); a process whose capture may restart (seq from 0 again) names the keyframe by id.
   bool applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes);
   // The same for keyframe `id`; false when it was culled.
   bool applyLateBoxesToKeyFrame(int64_t id, const std::vector<ObjectBox>& boxes);
-  // The dynamic mask of keyframe id as it stands now (after late boxes, completed as above); empty when it
-  // was culled.
+  // The dynamic mask of keyframe id as it stands now (after late boxes); empty when it was culled.
   cv::Mat keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, const cv::Mat& depth);
   const FrameGeometry& geometry() const { return *geometry_; }
   const TrackerConfig& config() const { return config_; }

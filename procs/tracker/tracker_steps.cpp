@@ -139,7 +139,7 @@ bool Tracker::applyLateBoxes(int64_t seq, const std::vector<ObjectBox>& boxes) {
   for (auto it = kfs.rbegin(); it != kfs.rend(); ++it) {
     if ((*it)->seq < seq) break;  // ids grow with seq: nothing older can match
     if ((*it)->seq != seq) continue;
-    dynamic_.observeLate(**it, held_boxes_.completeLate(boxes, (*it)->stamp));
+    dynamic_.observeLate(**it, boxes);
     return true;
   }
   return false;
@@ -150,7 +150,7 @@ bool Tracker::applyLateBoxesToKeyFrame(int64_t id, const std::vector<ObjectBox>&
   const auto lock = map_.lockForTracking();
   for (const auto& kf : map_.keyFrames())
     if (kf->id == id) {
-      dynamic_.observeLate(*kf, held_boxes_.completeLate(boxes, kf->stamp));
+      dynamic_.observeLate(*kf, boxes);
       return true;
     }
   return false;
@@ -159,12 +159,9 @@ bool Tracker::applyLateBoxesToKeyFrame(int64_t id, const std::vector<ObjectBox>&
 cv::Mat Tracker::keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, const cv::Mat& depth) {
   const auto lock = map_.lockForTracking();
   for (const auto& kf : map_.keyFrames())
-    if (kf->id == id) {
-      std::optional<std::vector<ObjectBox>> completed;
-      if (boxes) completed = held_boxes_.completeLate(*boxes, kf->stamp);
-      return dynamic_.mask(*kf->features, kf->dynamic, completed ? &*completed : nullptr, depth,
+    if (kf->id == id)
+      return dynamic_.mask(*kf->features, kf->dynamic, boxes, depth,
                            geometry_->camera.intrinsics().depth_scale);
-    }
   return {};
 }
 

@@ -90,29 +90,5 @@ TEST(HeldBoxes, NoAnswerChangesNothingAndTimeGoingBackForgets) {
   EXPECT_TRUE(off.complete(Boxes{}, 2 * kDt)->empty()) << "held_box_s 0: the detector's boxes only";
 }
 
-// Real time: a keyframe's own answer comes late, and YOLO missed the person there whom it found in the
-// answers around it. The late answer gets the held box at the keyframe's time (before, the stand-in's
-// observation was withdrawn for the answer's "static", and the person's points swung to static).
-TEST(HeldBoxes, ALateAnswerIsCompletedAtItsOwnTime) {
-  HeldBoxes held(0.5, 0.3);
-  held.complete(Boxes{person(100)}, 0.0);
-  held.complete(Boxes{person(110)}, 2 * kDt);  // 50 px/s
-  // Older than the answers before it: the person moved back to its time; nothing held changes.
-  const Boxes between = held.completeLate(Boxes{}, kDt);
-  ASSERT_EQ(between.size(), 1u);
-  EXPECT_FLOAT_EQ(between[0].box.x, 105.0f);
-  EXPECT_EQ(held.completeLate(Boxes{person(104)}, kDt).size(), 1u) << "found there: that box alone";
-  EXPECT_TRUE(held.completeLate(Boxes{}, -5 * kDt).empty()) << "beyond hold_s of when it was found";
-  // In order (every answer late, as when the detector is slower than the camera): held boxes learn from
-  // the late answers as from answers in time.
-  const Boxes next = held.completeLate(Boxes{person(120)}, 4 * kDt);
-  ASSERT_EQ(next.size(), 1u);
-  const Boxes missed = held.completeLate(Boxes{}, 6 * kDt);
-  ASSERT_EQ(missed.size(), 1u);
-  EXPECT_FLOAT_EQ(missed[0].box.x, 130.0f);
-  // Off (hold_s 0): the late answer as it came.
-  EXPECT_TRUE(HeldBoxes(0.0, 0.3).completeLate(Boxes{}, kDt).empty());
-}
-
 }  // namespace
 }  // namespace bmp::tracker
