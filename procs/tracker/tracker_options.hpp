@@ -172,7 +172,7 @@ struct DynamicOptions {
   double threshold = 0.5;        // P(dynamic) above this: out of the pose, new points and BA
   // A medium-dynamic box (chair, cup) counts as moving when this share of it lies in a person's box ...
   double medium_held_overlap = 0.5;
-  // ... or when this share of the last frame's keypoints inside it were dynamic.
+  // ... or (geometric) when this share of the last frame's keypoints inside it that were judged moved.
   double medium_moving_keypoints = 0.5;
   // ... and at least this many of them moved: one keypoint's verdict may be a mismatch.
   int medium_min_moved = 3;

@@ -1,7 +1,6 @@
 #include "launcher/run_session.hpp"
 
 #include <chrono>
-#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
