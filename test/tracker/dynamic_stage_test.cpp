@@ -108,6 +108,10 @@ TEST(DynamicRegions, OverlappingPeopleAndMediumObjects) {
   const auto still = movedShareInBoxes(chair_keys, boxes, {0, 0, 1, -1, 0, 0, 1}, min_moved);
   EXPECT_EQ(still[3], 0.0f);
   EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, still)[3], 0);
+  // The share decides once enough moved: with no minimum, 1 of its 5 judged is under the half.
+  const auto few = movedShareInBoxes(chair_keys, boxes, {0, 0, 1, -1, 0, 0, 1}, 1);
+  EXPECT_NEAR(few[3], 1.0 / 5.0, 1e-6);
+  EXPECT_EQ(movingBoxes(boxes, RegionOptions{}, few)[3], 0);
   // A still chair with one keypoint judged, and that one a mismatch seen moving: one verdict is no evidence.
   const auto lone = movedShareInBoxes(chair_keys, boxes, {1, -1, -1, -1, -1, -1, 1}, min_moved);
   EXPECT_EQ(lone[3], 0.0f);
