@@ -279,7 +279,12 @@ void DynamicStage::observeMovingClusters(Frame& frame, const FrameGeometry& g,
 
 void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const {
   if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
-  const std::vector<int8_t> z = boxObservation(*kf.features, boxes, {});
+  // The keyframe's own verdicts are the evidence that a chair moves (the frame after it would have taken
+  // them): without them a late answer would undo what its stand-in boxes' observation had counted.
+  std::vector<float> share;
+  if (kf.moved.size() == kf.features->keys.size())
+    share = movedShareInBoxes(kf.features->keys, boxes, kf.moved, options_.medium_min_moved);
+  const std::vector<int8_t> z = boxObservation(*kf.features, boxes, share);
   // Observed with stand-in boxes, the frame's probabilities hold their observation: the frame's own
   // answer takes its place (withdrawn, then applied), so the frame counts once.
   const bool replace = kf.stand_in_z.size() == z.size();

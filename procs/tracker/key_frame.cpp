@@ -12,7 +12,8 @@ KeyFrame::KeyFrame(int64_t i, const Frame& frame)
       points(frame.points),
       moving(frame.moving),
       dynamic(frame.dynamic),
-      stand_in_z(frame.box_z_stand_in ? frame.box_z : std::vector<int8_t>{}) {
+      stand_in_z(frame.box_z_stand_in ? frame.box_z : std::vector<int8_t>{}),
+      moved(frame.moved) {
   setPose(frame.T_world_cam());
   for (std::size_t k = 0; k < points.size(); ++k)
     if (points[k] && (frame.outlier[k] || points[k]->temporary() || points[k]->bad)) points[k].reset();

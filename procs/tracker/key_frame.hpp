@@ -27,6 +27,9 @@ class KeyFrame {
   // The box observation its frame took from stand-in boxes (empty otherwise): its own answer, when it comes
   // late, replaces it (DynamicStage::observeLate) instead of counting twice.
   std::vector<int8_t> stand_in_z;
+  // Its frame's geometric verdicts (Frame::moved; empty before kGeometric's): a late answer's evidence that a
+  // chair or cup box moves, as the frame after it takes this frame's.
+  std::vector<int8_t> moved;
 
   void setPose(const SE3& T_world_cam);
   const SE3& T_world_cam() const { return T_world_cam_; }
