@@ -301,7 +301,26 @@ void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes
   kf.stand_in_z.clear();
 }
 
-cv::Mat DynamicStage::mask(const Features& f, const std::vector<uint8_t>& dynamic,
+namespace {
+
+double depthAt(const cv::Mat& depth, int u, int v, double depth_scale) {
+  return depth.type() == CV_32FC1 ? depth.at<float>(v, u) : depth.at<uint16_t>(v, u) / depth_scale;
+}
+
+// Marks the pixels of box (clipped to m) with no depth or a depth in [near_m, far_m].
+void markAtDepth(const cv::Rect& box, double near_m, double far_m, const cv::Mat& depth, double depth_scale,
+                 cv::Mat& m) {
+  const cv::Rect r = box & cv::Rect(0, 0, m.cols, m.rows);
+  for (int v = r.y; v < r.y + r.height; ++v)
+    for (int u = r.x; u < r.x + r.width; ++u) {
+      const double d = depthAt(depth, u, v, depth_scale);
+      if (d <= 0 || (d >= near_m && d <= far_m)) m.at<uint8_t>(v, u) = 255;
+    }
+}
+
+}  // namespace
+
+cv::Mat DynamicStage::mask(const Features& f, const FrameGeometry& g, const std::vector<uint8_t>& dynamic,
                            const std::vector<ObjectBox>* boxes, const cv::Mat& depth,
                            double depth_scale) const {
   cv::Mat m = cv::Mat::zeros(depth.size(), CV_8UC1);
@@ -309,22 +328,53 @@ cv::Mat DynamicStage::mask(const Features& f, const std::vector<uint8_t>& dynami
   if (boxes) {
     const cv::Rect image(0, 0, m.cols, m.rows);
     for (const MovingRegion& r : movingRegions(f, *boxes, {})) {
-      const cv::Rect box = cv::Rect(r.box) & image;
-      if (r.far_m <= 0) {
-        m(box).setTo(255);
-        continue;
-      }
-      for (int v = box.y; v < box.y + box.height; ++v)
-        for (int u = box.x; u < box.x + box.width; ++u) {
-          const double d =
-              depth.type() == CV_32FC1 ? depth.at<float>(v, u) : depth.at<uint16_t>(v, u) / depth_scale;
-          if (d <= 0 || (d >= r.near_m && d <= r.far_m)) m.at<uint8_t>(v, u) = 255;
-        }
+      if (r.far_m <= 0)
+        m(cv::Rect(r.box) & image).setTo(255);
+      else
+        markAtDepth(cv::Rect(r.box), r.near_m, r.far_m, depth, depth_scale, m);
     }
+  }
+  if (options_.mode == DynamicMode::kGeometric && options_.cluster_min_moved > 0) {
+    // The movers no box holds: a person's region covers the person already, and a cluster's box spanning
+    // several people would take the floor and wall between them.
+    std::vector<uint8_t> unboxed = dynamic;
+    if (boxes) {
+      const std::vector<int8_t> z = boxObservation(f, *boxes, {});
+      for (std::size_t i = 0; i < unboxed.size(); ++i) unboxed[i] = unboxed[i] && !z[i];
+    }
+    maskDynamicClusters(f, g, unboxed, depth, depth_scale, m);
   }
   for (int i = 0; i < f.size(); ++i)
     if (dynamic[i]) cv::circle(m, f.keys[i].pt, options_.mask_keypoint_radius_px, 255, cv::FILLED);
   return m;
+}
+
+void DynamicStage::maskDynamicClusters(const Features& f, const FrameGeometry& g,
+                                       const std::vector<uint8_t>& dynamic, const cv::Mat& depth,
+                                       double depth_scale, cv::Mat& m) const {
+  // The clusters the geometric observation links moved keypoints into, here of the dynamic ones; no
+  // keypoint vetoes (those not yet judged dynamic on a mover are what the region is for).
+  std::vector<int8_t> verdict(dynamic.size(), -1);
+  for (std::size_t i = 0; i < dynamic.size(); ++i)
+    if (dynamic[i]) verdict[i] = 1;
+  const std::vector<MovingCluster> clusters = movingClusters(
+      f, g, verdict, options_.cluster_link_px, options_.neighbour_depth_m, options_.cluster_min_moved);
+  const int grow = options_.mask_keypoint_radius_px;
+  for (const MovingCluster& c : clusters) {
+    // Its box in the (distorted) image the mask is drawn on: of its own keypoints' positions there.
+    float u0 = std::numeric_limits<float>::max(), v0 = u0, u1 = -u0, v1 = -u0;
+    for (int i = 0; i < f.size(); ++i) {
+      if (verdict[i] != 1 || f.depth[i] <= 0 || !c.covers(f.un[i].x(), f.un[i].y(), f.depth[i], 0.0))
+        continue;
+      const cv::Point2f& p = f.keys[i].pt;
+      u0 = std::min(u0, p.x), u1 = std::max(u1, p.x), v0 = std::min(v0, p.y), v1 = std::max(v1, p.y);
+    }
+    if (u1 < u0) continue;
+    const cv::Rect grown(cv::Point(cvFloor(u0) - grow, cvFloor(v0) - grow),
+                         cv::Point(cvCeil(u1) + grow + 1, cvCeil(v1) + grow + 1));
+    markAtDepth(grown, c.near_m - options_.neighbour_depth_m, c.far_m + options_.neighbour_depth_m, depth,
+                depth_scale, m);
+  }
 }
 
 }  // namespace bmp::tracker

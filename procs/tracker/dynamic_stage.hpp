@@ -55,9 +55,12 @@ class DynamicStage {
   std::vector<MovingRegion> movingRegions(const Features& f, const std::vector<ObjectBox>& boxes,
                                           const std::vector<float>& moving_share) const;
   // The per-pixel dynamic mask of a frame (CV_8UC1, 255 dynamic): its moving regions (by depth when
-  // refined) and a disk around every dynamic keypoint. depth: CV_16UC1 raw, scaled by depth_scale.
-  cv::Mat mask(const Features& f, const std::vector<uint8_t>& dynamic, const std::vector<ObjectBox>* boxes,
-               const cv::Mat& depth, double depth_scale) const;
+  // refined), a disk around every dynamic keypoint and, with kGeometric, each cluster of dynamic keypoints
+  // as a region: its bounding box, grown by the disk's radius, at its depths (a mover no detector knows has
+  // only some of its keypoints judged; the mapper must leave out the rest of it too). depth: CV_16UC1 raw,
+  // scaled by depth_scale, or CV_32FC1 metres.
+  cv::Mat mask(const Features& f, const FrameGeometry& g, const std::vector<uint8_t>& dynamic,
+               const std::vector<ObjectBox>* boxes, const cv::Mat& depth, double depth_scale) const;
   const MovingProbabilityOptions& bayes() const { return bayes_; }
 
  private:
@@ -81,6 +84,9 @@ class DynamicStage {
   KeypointWindowGrid matchedNeighbours(const Frame& frame, const FrameGeometry& g) const;
   float neighbourPrior(const Frame& frame, const KeypointWindowGrid& matched, int i) const;
   float clampProbability(double p) const;
+  // mask(): the region of each cluster of the keypoints `dynamic` flags, marked on m.
+  void maskDynamicClusters(const Features& f, const FrameGeometry& g, const std::vector<uint8_t>& dynamic,
+                           const cv::Mat& depth, double depth_scale, cv::Mat& m) const;
   // A prior carried from an earlier frame: with kGeometric, what was static may have started to move
   // since (and the reverse), with probability geo_transition; else unchanged, as in the paper.
   double carried(double p) const;

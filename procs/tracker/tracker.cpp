@@ -136,8 +136,9 @@ TrackResult Tracker::track(const TrackerInput& input) {
     for (const auto& k : frame.features->keys) result.keypoints.push_back(k.pt);
     if (result.new_keyframe) {
       const ScopedAccumulator timer(dynamic_ms_);
-      result.dynamic_mask = dynamic_.mask(*frame.features, frame.dynamic, boxes ? &*boxes : nullptr,
-                                          input.depth, geometry_->camera.intrinsics().depth_scale);
+      result.dynamic_mask =
+          dynamic_.mask(*frame.features, *geometry_, frame.dynamic, boxes ? &*boxes : nullptr, input.depth,
+                        geometry_->camera.intrinsics().depth_scale);
     }
     result.dynamic_ms = dynamic_ms_;
   }

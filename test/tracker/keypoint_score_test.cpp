@@ -71,5 +71,22 @@ TEST(KeypointScore, RejectsAMaskOfTheWrongTypeAndFlagsThatDoNotMatch) {
   EXPECT_THROW(score.add(r, cv::Mat::zeros(4, 4, CV_16UC1)), std::invalid_argument);
 }
 
+// The keyframes' masks pixel by pixel: a 20 x 10 image, the mover its left half (100 pixels), the mask
+// 60 of them and 10 of the static half; a second keyframe with no mover and nothing masked.
+TEST(MaskPixelScore, SharesOfTheMoversAndOfTheStaticScenePixelsMasked) {
+  cv::Mat movers = cv::Mat::zeros(10, 20, CV_8UC1), mask = movers.clone();
+  movers(cv::Rect(0, 0, 10, 10)).setTo(255);
+  mask(cv::Rect(4, 0, 7, 10)).setTo(255);  // 6 columns on the mover, 1 beside it
+  MaskPixelScore score;
+  EXPECT_FALSE(score.moversMasked().has_value());
+  score.add(mask, movers);
+  score.add(cv::Mat::zeros(10, 20, CV_8UC1), cv::Mat::zeros(10, 20, CV_8UC1));
+  EXPECT_EQ(score.keyframes(), 2);
+  EXPECT_DOUBLE_EQ(score.moversMasked().value_or(-1), 60.0 / 100.0);
+  EXPECT_DOUBLE_EQ(score.staticMasked().value_or(-1), 10.0 / 300.0);
+  EXPECT_THROW(score.add(mask, cv::Mat::zeros(10, 21, CV_8UC1)), std::invalid_argument);
+  EXPECT_THROW(score.add(cv::Mat::zeros(10, 20, CV_16UC1), movers), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace bmp::tracker

@@ -93,6 +93,7 @@ struct FrameTimes {
 constexpr double kScoreFromS = 1.0;
 struct MaskScore {
   KeypointScore score;
+  MaskPixelScore keyframe_masks;
   std::optional<double> first_stamp;
 };
 
@@ -110,6 +111,9 @@ void printMaskScore(const MaskScore& s) {
               s.score.onStatic(), kScoreFromS);
   std::printf("pose inliers on movers %ld of %ld (%s)\n", s.score.moversInPose(), s.score.inPose(),
               shareText(s.score.moversInPoseShare()).c_str());
+  std::printf("keyframe masks    movers' pixels %s, static pixels %s masked (%ld keyframes; the mapper's)\n",
+              shareText(s.keyframe_masks.moversMasked()).c_str(),
+              shareText(s.keyframe_masks.staticMasked()).c_str(), s.keyframe_masks.keyframes());
 }
 
 void printRunSummary(const OfflineResult& result, const FrameTimes& times, long long dropped) {
@@ -391,7 +395,11 @@ int runBenchTracker(const bmp::ArgParser& args) {
             "          pose inliers on movers %3ld of %3ld, movers' keypoints kept out %3ld of %3ld\n",
             frame.moversInPose(), frame.inPose(), frame.moversOut(), frame.onMovers());
       }
-      if (f.stamp - *scored->first_stamp >= kScoreFromS) scored->score.add(r, f.mover_mask);
+      if (f.stamp - *scored->first_stamp >= kScoreFromS) {
+        scored->score.add(r, f.mover_mask);
+        if (r.new_keyframe && !r.dynamic_mask.empty())
+          scored->keyframe_masks.add(r.dynamic_mask, f.mover_mask);
+      }
     }
     *last = r;
   };
@@ -454,7 +462,8 @@ void addBenchTrackerOptions(ArgParser& args) {
   args.addFlag("oracle-masks", "exclude keypoints on DIR/mask/*.png (bmp-synth's moving-object masks)");
   args.addFlag("score-masks",
                "score the dynamic stage against DIR/mask/*.png: recall (keypoints on movers kept out), "
-               "precision, static keypoints kept out");
+               "precision, static keypoints kept out; and the keyframes' dynamic masks (the mapper's), "
+               "pixel by pixel");
   args.addFlag("verbose", "print every frame's state, not every 100th");
 }
 

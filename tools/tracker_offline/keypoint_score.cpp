@@ -55,6 +55,25 @@ std::optional<double> KeypointScore::moversInPoseShare() const {
   return share(mover_in_pose_, in_pose_);
 }
 
+void MaskPixelScore::add(const cv::Mat& mask, const cv::Mat& movers) {
+  if (mask.type() != CV_8UC1 || movers.type() != CV_8UC1 || mask.size() != movers.size())
+    throw std::invalid_argument("MaskPixelScore: the masks must be CV_8UC1 and of one size");
+  const long on_movers = cv::countNonZero(movers);
+  const long masked_movers = cv::countNonZero(mask & movers);
+  ++keyframes_;
+  mover_ += on_movers;
+  mover_masked_ += masked_movers;
+  static_ += static_cast<long>(mask.total()) - on_movers;
+  static_masked_ += cv::countNonZero(mask) - masked_movers;
+}
+
+std::optional<double> MaskPixelScore::moversMasked() const {
+  return share(mover_masked_, mover_);
+}
+std::optional<double> MaskPixelScore::staticMasked() const {
+  return share(static_masked_, static_);
+}
+
 std::string shareText(const std::optional<double>& share) {
   if (!share) return "n/a";
   char text[32];

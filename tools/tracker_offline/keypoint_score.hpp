@@ -46,6 +46,21 @@ class KeypointScore {
   long in_pose_ = 0, mover_in_pose_ = 0;
 };
 
+// The keyframes' dynamic masks (what the mapper leaves out) scored against the truth, pixel by pixel: of
+// the movers' pixels the share masked (a mover's pixels left unmasked become ghosts in the map), of the
+// static pixels the share masked (static scene the map loses in that keyframe).
+class MaskPixelScore {
+ public:
+  // mask: the keyframe's (CV_8UC1, nonzero masked); movers: the truth's, the same size.
+  void add(const cv::Mat& mask, const cv::Mat& movers);
+  long keyframes() const { return keyframes_; }
+  std::optional<double> moversMasked() const;
+  std::optional<double> staticMasked() const;
+
+ private:
+  long keyframes_ = 0, mover_ = 0, mover_masked_ = 0, static_ = 0, static_masked_ = 0;
+};
+
 // A share as printed: four decimals, or "n/a" when it is undefined.
 std::string shareText(const std::optional<double>& share);
 
