@@ -204,10 +204,12 @@ struct DynamicOptions {
   double track_ratio = 0.8;
   // Geometric: keypoints that moved, linked within cluster_link_px and neighbour_depth_m, form a cluster;
   // one of at least cluster_min_moved that outnumbers the keypoints that stayed in its box and depth range
-  // is a mover, and every other keypoint there is observed moving too (0: off).
+  // is a mover, and every other keypoint there is observed moving too (0: off). The keyframe mask links
+  // the dynamic keypoints outside person regions the same way and masks each such cluster's box.
   double cluster_link_px = 60.0;
   int cluster_min_moved = 5;
-  int mask_keypoint_radius_px = 12;  // keyframe mask: disk drawn around each dynamic keypoint
+  // Keyframe mask: disk drawn around each dynamic keypoint, and the margin around a cluster's box.
+  int mask_keypoint_radius_px = 12;
   // Every variant with boxes: the ORB spread counts the area of the frame's person (high-dynamic) boxes
   // at this share, so the keypoint budget goes mostly to the static scene that holds the pose (1: boxes
   // change nothing, as in the paper's extractor).
