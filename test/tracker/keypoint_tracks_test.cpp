@@ -45,11 +45,6 @@ struct Rig : test_rig::RoomRig {
   }
 };
 
-bool inside(const cv::Rect& r, const cv::Point2f& p, int inset) {
-  return p.x >= r.x + inset && p.y >= r.y + inset && p.x < r.x + r.width - inset &&
-         p.y < r.y + r.height - inset;
-}
-
 TEST(KeypointTracks, FollowTheBoxBeyondTheMotionWindowAndTheRoomInPlace) {
   const SlidingBox scene;
   ASSERT_FALSE(scene.box.empty()) << "images missing under " << test::sharedDir();
@@ -60,7 +55,8 @@ TEST(KeypointTracks, FollowTheBoxBeyondTheMotionWindowAndTheRoomInPlace) {
   int on_box = 0, box_tracked = 0, room_tracked = 0, wrong = 0;
   for (int i = 0; i < now.features->size(); ++i) {
     const cv::KeyPoint& kp = now.features->keys[i];
-    const bool box = inside(scene.where(1), kp.pt, 8), room = !inside(scene.where(1), kp.pt, -12);
+    const bool box = test_rig::insideBy(scene.where(1), kp.pt, 8),
+               room = !test_rig::insideBy(scene.where(1), kp.pt, -12);
     if (!box && !room) continue;  // the box's rim: its keypoints see both
     on_box += box;
     const int j = track[i];
@@ -134,10 +130,10 @@ std::vector<KeptOut> run(const DynamicOptions& options, int frames, int person_u
     int box = 0, box_out = 0, room = 0, room_out = 0;
     for (int k = 0; k < f.features->size(); ++k) {
       const cv::Point2f p = f.features->keys[k].pt;
-      if (inside(scene.where(i), p, 6)) {
+      if (test_rig::insideBy(scene.where(i), p, 6)) {
         ++box;
         box_out += f.isDynamic(k);
-      } else if (!inside(scene.where(i), p, -12)) {
+      } else if (!test_rig::insideBy(scene.where(i), p, -12)) {
         ++room;
         room_out += f.isDynamic(k);
       }
@@ -193,7 +189,7 @@ TEST(MediumBoxes, AChairDoesNotKeepItselfMovingOnItsOwnBox) {
     stage.conclude(f, s.g, previous);
     int in = 0, out = 0;
     for (int k = 0; k < f.features->size(); ++k) {
-      if (!inside(chair, f.features->keys[k].pt, 6)) continue;
+      if (!test_rig::insideBy(chair, f.features->keys[k].pt, 6)) continue;
       ++in;
       out += f.isDynamic(k);
     }
@@ -243,14 +239,14 @@ TEST(LateBoxes, TakeThePlaceOfTheStandInsTheFrameWasObservedWith) {
     KeyFrame kf(0, f);
     int in_box = 0;
     for (int k = 0; k < f.features->size(); ++k) {
-      if (!inside(scene.where(0), f.features->keys[k].pt, 6)) continue;
+      if (!test_rig::insideBy(scene.where(0), f.features->keys[k].pt, 6)) continue;
       ++in_box;
       ASSERT_NEAR(kf.moving[k], 0.9, 1e-6);
     }
     ASSERT_GT(in_box, 20);
     stage.observeLate(kf, own);
     for (int k = 0; k < f.features->size(); ++k) {
-      if (!inside(scene.where(0), f.features->keys[k].pt, 6)) continue;
+      if (!test_rig::insideBy(scene.where(0), f.features->keys[k].pt, 6)) continue;
       EXPECT_NEAR(kf.moving[k], flagged ? 0.1 : 0.5, 1e-6) << (flagged ? "replaced" : "counted on top");
       EXPECT_FALSE(kf.dynamic[k]);
     }

@@ -12,10 +12,6 @@ namespace {
 
 const cv::Rect kChair(380, 260, 160, 160);
 
-bool well_inside(const cv::Rect& r, const cv::Point2f& p) {
-  return p.x >= r.x + 4 && p.y >= r.y + 4 && p.x < r.x + r.width - 4 && p.y < r.y + r.height - 4;
-}
-
 // The moving probabilities of the keypoints on the chair after the late answer, its frame's verdicts saying
 // the chair's keypoints moved (or stayed).
 std::vector<float> chairAfterLateAnswer(bool chair_moved) {
@@ -28,13 +24,13 @@ std::vector<float> chairAfterLateAnswer(bool chair_moved) {
   stage.applyPriors(f);  // nothing matched, no boxes yet: the unmatched prior
   f.moved.assign(f.features->keys.size(), 0);
   for (int k = 0; k < f.features->size(); ++k)
-    if (well_inside(kChair, f.features->keys[k].pt)) f.moved[k] = chair_moved ? 1 : 0;
+    if (test_rig::insideBy(kChair, f.features->keys[k].pt, 4)) f.moved[k] = chair_moved ? 1 : 0;
   KeyFrame kf(0, f);
   const std::vector<ObjectBox> late{{cv::Rect2f(kChair), DynamicLevel::kMedium, 56, 0.8f}};
   stage.observeLate(kf, late);
   std::vector<float> chair;
   for (int k = 0; k < f.features->size(); ++k)
-    if (well_inside(kChair, f.features->keys[k].pt)) chair.push_back(kf.moving[k]);
+    if (test_rig::insideBy(kChair, f.features->keys[k].pt, 4)) chair.push_back(kf.moving[k]);
   return chair;
 }
 

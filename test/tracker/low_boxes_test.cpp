@@ -21,10 +21,6 @@ struct Counts {
   int body = 0, body_in = 0;      // on the person outside the screen's box
 };
 
-bool well_inside(const cv::Rect& r, const cv::Point2f& p) {
-  return p.x >= r.x + 4 && p.y >= r.y + 4 && p.x < r.x + r.width - 4 && p.y < r.y + r.height - 4;
-}
-
 Counts observe(DynamicMode mode) {
   const test_rig::RoomRig rig;
   const cv::Mat room = test_rig::loadRoom();
@@ -43,15 +39,15 @@ Counts observe(DynamicMode mode) {
   for (int k = 0; k < f.features->size(); ++k) {
     const cv::Point2f& p = f.features->keys[k].pt;
     const bool in = f.box_z[k] != 0;
-    if (well_inside(kArm, p)) {
+    if (test_rig::insideBy(kArm, p, 4)) {
       ++c.arm;
       c.arm_in += in;
-    } else if (well_inside(
-                   cv::Rect(kScreen.x + kArm.width, kScreen.y, kScreen.width - kArm.width, kScreen.height),
-                   p)) {
+    } else if (test_rig::insideBy(
+                   cv::Rect(kScreen.x + kArm.width, kScreen.y, kScreen.width - kArm.width, kScreen.height), p,
+                   4)) {
       ++c.screen;
       c.screen_in += in;
-    } else if (well_inside(kPerson, p) &&
+    } else if (test_rig::insideBy(kPerson, p, 4) &&
                !cv::Rect(kScreen.x - 4, kScreen.y - 4, kScreen.width + 8, kScreen.height + 8).contains(p)) {
       ++c.body;
       c.body_in += in;

@@ -20,6 +20,13 @@ inline cv::Mat loadRoom() {
   return room;
 }
 
+// Whether p lies inside r shrunk by inset pixels on every side (a negative inset grows it): a keypoint well
+// inside a drawn region is surely on it, one well outside surely off it.
+inline bool insideBy(const cv::Rect& r, const cv::Point2f& p, int inset) {
+  return p.x >= r.x + inset && p.y >= r.y + inset && p.x < r.x + r.width - inset &&
+         p.y < r.y + r.height - inset;
+}
+
 struct RoomRig {
   CameraIntrinsics k;
   TrackerConfig config;
