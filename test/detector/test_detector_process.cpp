@@ -116,7 +116,7 @@ class DetectorProcess : public ::testing::Test {
 
   // SIGINT; returns the final heartbeat (state FINISHED).
   process_status_t stop() {
-    EXPECT_EQ(child_->stop(15.0), 0) << "log in " << log_path_;
+    EXPECT_EQ(child_->stop(15.0), 0) << diagnosis();
     pumpUntil(
         [&] { return !statuses_.empty() && statuses_.back().state == process_status_t::STATE_FINISHED; },
         2.0);
@@ -125,6 +125,24 @@ class DetectorProcess : public ::testing::Test {
   }
 
   std::string log() const { return test::readText(log_path_); }
+
+  // What a failure needs to tell a lost frame (the heartbeat's lost) from a slow or stuck detector: the seqs
+  // answered, the last heartbeat's counts and the process's log.
+  std::string diagnosis() const {
+    std::ostringstream out;
+    out << answers_.size() << " answer(s), seqs";
+    for (const auto& [seq, msg] : answers_) out << " " << seq;
+    if (statuses_.empty()) {
+      out << "; no heartbeat";
+    } else {
+      const process_status_t& s = statuses_.back();
+      out << "; last heartbeat: received " << s.received << ", processed " << s.processed << ", dropped "
+          << s.dropped << ", lost " << s.lost << ", malformed " << s.malformed << ", message '" << s.message
+          << "'";
+    }
+    out << "; log " << log_path_ << ":\n" << log();
+    return out.str();
+  }
 
   std::unique_ptr<LcmNode> node_;
   std::unique_ptr<ChildProcess> child_;
@@ -156,8 +174,7 @@ TEST_F(DetectorProcess, EveryModeAnswersEachFrameAndSkipsAnUndecodableOne) {
     node_->publish("RGBD_FRAME", msg);
     node_->handle(30);
   }
-  ASSERT_TRUE(pumpUntil([&] { return answers_.size() >= frames.size(); }, 60.0))
-      << answers_.size() << " answers; log in " << log_path_;
+  ASSERT_TRUE(pumpUntil([&] { return answers_.size() >= frames.size(); }, 60.0)) << diagnosis();
   pumpUntil([] { return false; }, 0.5);  // nothing more may come
 
   // Every frame is answered, the undecodable one too: with its reason and no boxes.
@@ -189,8 +206,8 @@ TEST_F(DetectorProcess, EveryModeAnswersEachFrameAndSkipsAnUndecodableOne) {
   EXPECT_GE(persons, 2 * static_cast<int>(answers_.size()));
 
   const process_status_t last = stop();
-  EXPECT_EQ(static_cast<int>(last.state), static_cast<int>(process_status_t::STATE_FINISHED));
-  EXPECT_EQ(last.received, 10);
+  EXPECT_EQ(static_cast<int>(last.state), static_cast<int>(process_status_t::STATE_FINISHED)) << diagnosis();
+  EXPECT_EQ(last.received, 10) << diagnosis();
   EXPECT_EQ(last.processed, 9);
   EXPECT_EQ(last.malformed, 1);
   EXPECT_EQ(last.dropped, 0);
@@ -246,7 +263,7 @@ TEST_F(DetectorProcess, LatestModeWorksOnTheNewestFrameAndCountsDrops) {
   // Far faster than inference: most frames find the detector busy.
   for (const auto& msg : messages) node_->publish("RGBD_FRAME", msg);
   ASSERT_TRUE(pumpUntil([&] { return answers_.count(19) == 1; }, 30.0))
-      << "the newest frame was not answered; log in " << log_path_;
+      << "the newest frame was not answered; " << diagnosis();
   pumpUntil([] { return false; }, 0.5);
 
   EXPECT_LT(answers_.size(), frames.size());
@@ -266,7 +283,7 @@ TEST_F(DetectorProcess, AModelNamedOnTheCommandLineReplacesTheConfiguredOne) {
   const auto frames = bonnFrames(445, 1);
   ASSERT_EQ(frames.size(), 1u);
   node_->publish("RGBD_FRAME", frameMessage(0, frames[0]));
-  ASSERT_TRUE(pumpUntil([&] { return answers_.count(0) == 1; }, 60.0)) << "no answer; log in " << log_path_;
+  ASSERT_TRUE(pumpUntil([&] { return answers_.count(0) == 1; }, 60.0)) << diagnosis();
   EXPECT_NE(answers_.at(0).model.find("640"), std::string::npos) << answers_.at(0).model;
   stop();
   EXPECT_NE(log().find("yolov5n_coco_640.onnx"), std::string::npos) << log();
