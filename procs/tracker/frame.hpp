@@ -20,6 +20,13 @@
 
 namespace bmp::tracker {
 
+// Cell `cell` (a floor or ceil of a position over the cell width) clamped to [0, count): compared as a
+// double before the cast, since casting a NaN or far-off double to int is undefined. NaN gives cell 0.
+inline int clampedCell(double cell, int count) {
+  if (!(cell > 0.0)) return 0;
+  return cell >= count - 1 ? count - 1 : static_cast<int>(cell);
+}
+
 class MapPoint;
 class KeyFrame;
 
@@ -79,12 +86,11 @@ struct Features {
 template <class Fn>
 void Features::forEachInArea(const FrameGeometry& g, double u, double v, double r, int min_level,
                              int max_level, Fn&& fn) const {
-  const int c0 = std::max(0, static_cast<int>(std::floor((u - r - g.min_x) / g.grid_cell_w)));
-  const int c1 =
-      std::min(FrameGeometry::kGridCols - 1, static_cast<int>(std::ceil((u + r - g.min_x) / g.grid_cell_w)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((v - r - g.min_y) / g.grid_cell_h)));
-  const int r1 =
-      std::min(FrameGeometry::kGridRows - 1, static_cast<int>(std::ceil((v + r - g.min_y) / g.grid_cell_h)));
+  if (!(std::isfinite(u) && std::isfinite(v) && r >= 0.0)) return;  // a projection gone wrong finds nothing
+  const int c0 = clampedCell(std::floor((u - r - g.min_x) / g.grid_cell_w), FrameGeometry::kGridCols);
+  const int c1 = clampedCell(std::ceil((u + r - g.min_x) / g.grid_cell_w), FrameGeometry::kGridCols);
+  const int r0 = clampedCell(std::floor((v - r - g.min_y) / g.grid_cell_h), FrameGeometry::kGridRows);
+  const int r1 = clampedCell(std::ceil((v + r - g.min_y) / g.grid_cell_h), FrameGeometry::kGridRows);
   for (int row = r0; row <= r1; ++row) {
     for (int col = c0; col <= c1; ++col) {
       for (int i : grid[row * FrameGeometry::kGridCols + col]) {

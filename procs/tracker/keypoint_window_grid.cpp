@@ -30,11 +30,11 @@ KeypointWindowGrid::KeypointWindowGrid(const Features& f, const FrameGeometry& g
 }
 
 int KeypointWindowGrid::column(double u) const {
-  return std::clamp(static_cast<int>(std::floor((u - min_x_) / cell_)), 0, cols_ - 1);
+  return clampedCell(std::floor((u - min_x_) / cell_), cols_);
 }
 
 int KeypointWindowGrid::row(double v) const {
-  return std::clamp(static_cast<int>(std::floor((v - min_y_) / cell_)), 0, rows_ - 1);
+  return clampedCell(std::floor((v - min_y_) / cell_), rows_);
 }
 
 }  // namespace bmp::tracker

@@ -33,6 +33,7 @@ class KeypointWindowGrid {
   // levels [lo, hi]; lo < 0 or hi < 0: no bound on that side.
   template <class Fn>
   void forEach(double u, double v, double r, int lo, int hi, Fn&& fn) const {
+    if (!(std::isfinite(u) && std::isfinite(v) && r >= 0.0)) return;  // a projection gone wrong finds nothing
     lo = lo < 0 ? 0 : lo;
     hi = hi < 0 || hi >= levels_ ? levels_ - 1 : hi;
     if (lo > hi) return;

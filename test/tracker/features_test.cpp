@@ -1,6 +1,10 @@
 // Per-keypoint data: depth from 16-bit or float images, and the exclusion hook (weight callback and mask).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+#include <vector>
+
 #include <opencv2/imgproc.hpp>
 
 #include "tracker/frame.hpp"
@@ -68,6 +72,26 @@ TEST(TrackerFeatures, DepthFromRawOrMetresAndExclusionHook) {
   EXPECT_GT(usable, 50);
   EXPECT_EQ(in_grid, usable);  // excluded keypoints cannot be matched: they are not in the search grid
   EXPECT_EQ(c->numExcluded(), c->size() - usable);
+}
+
+// A keypoint whose position is not a number (a wild distortion model undistorts it to nowhere) fits no
+// cell of the frame's grid, so no search can return it; the keypoints beside it keep theirs.
+TEST(TrackerFeatures, AKeypointThatIsNotANumberFitsNoCell) {
+  const CameraIntrinsics k;
+  const TrackerConfig config;
+  const FrameGeometry g(k, config);
+  OrbFeatures orb;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const cv::Point2f pt : {cv::Point2f(100, 100), cv::Point2f(nan, 100), cv::Point2f(300, nan),
+                               cv::Point2f(1e30f, 200), cv::Point2f(320, 240)})
+    orb.keys.emplace_back(pt, 31.0f);
+  orb.descriptors = cv::Mat::zeros(static_cast<int>(orb.keys.size()), 32, CV_8U);
+  const auto f = buildFeatures(orb, cv::Mat(), g, nullptr, cv::Mat());
+  std::vector<int> in_grid;
+  for (const auto& cell : f->grid) in_grid.insert(in_grid.end(), cell.begin(), cell.end());
+  std::sort(in_grid.begin(), in_grid.end());
+  EXPECT_EQ(in_grid, (std::vector<int>{0, 4}));
+  for (int i = 0; i < f->size(); ++i) EXPECT_FALSE(f->hasDepth(i)) << "keypoint " << i;
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -70,6 +72,36 @@ TEST(KeypointWindowGrid, FindsWhatTheFramesGridWalkFindsForAnyWindowLevelsAndSub
     }
   }
   EXPECT_GT(found, 5000);  // the windows were not all empty
+}
+
+// A map point projected through a wild camera model can land anywhere, or nowhere: a search centred on a
+// position that is not a number, infinite or far off finds nothing (its cell is chosen in double, never by
+// casting such a value to int), and a window wider than the image finds every keypoint.
+TEST(KeypointWindowGrid, AWindowCentredOnNoNumberOrFarOffFindsNothingAndAHugeOneFindsAll) {
+  const RealFrame s;
+  ASSERT_TRUE(s.f) << "image missing under " << test::sharedDir();
+  const Features& f = *s.f;
+  std::vector<int> all;
+  for (const auto& cell : f.grid) all.insert(all.end(), cell.begin(), cell.end());
+  ASSERT_GT(all.size(), 500u);
+  const KeypointWindowGrid grid(f, s.g, 40.0, all);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const double cx = 0.5 * (s.g.min_x + s.g.max_x), cy = 0.5 * (s.g.min_y + s.g.max_y);
+  const std::vector<std::array<double, 3>> nowhere = {{nan, cy, 40},  {cx, nan, 40},   {inf, cy, 40},
+                                                      {cx, -inf, 40}, {1e300, cy, 40}, {cx, -1e300, 40},
+                                                      {cx, cy, nan},  {cx, cy, -5},    {3e9, 3e9, 40}};
+  for (const auto& [u, v, r] : nowhere) {
+    int a = 0, b = 0;
+    f.forEachInArea(s.g, u, v, r, [&](int) { ++a; });
+    grid.forEach(u, v, r, -1, -1, [&](int) { ++b; });
+    EXPECT_EQ(a, 0) << "frame grid, window at " << u << ", " << v << " r " << r;
+    EXPECT_EQ(b, 0) << "window grid, window at " << u << ", " << v << " r " << r;
+  }
+  std::vector<int> got_frame, got_grid;
+  f.forEachInArea(s.g, cx, cy, 1e300, [&](int i) { got_frame.push_back(i); });
+  grid.forEach(cx, cy, 1e300, -1, -1, [&](int i) { got_grid.push_back(i); });
+  EXPECT_EQ(sorted(got_frame), sorted(all));
+  EXPECT_EQ(sorted(got_grid), sorted(all));
 }
 
 }  // namespace
