@@ -84,7 +84,11 @@ std::vector<DynamicStage::MovingRegion> DynamicStage::movingRegions(
 
 std::vector<int8_t> DynamicStage::boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
                                                  const std::vector<float>& moving_share) const {
-  const std::vector<MovingRegion> regions = movingRegions(f, boxes, moving_share);
+  return regionObservation(f, boxes, movingRegions(f, boxes, moving_share));
+}
+
+std::vector<int8_t> DynamicStage::regionObservation(const Features& f, const std::vector<ObjectBox>& boxes,
+                                                    const std::vector<MovingRegion>& regions) {
   std::vector<int8_t> z(static_cast<std::size_t>(f.size()), 0);
   for (int k = 0; k < f.size(); ++k) {
     const cv::Point2f& p = f.keys[k].pt;
@@ -325,9 +329,11 @@ cv::Mat DynamicStage::mask(const Features& f, const FrameGeometry& g, const std:
                            double depth_scale) const {
   cv::Mat m = cv::Mat::zeros(depth.size(), CV_8UC1);
   if (!enabled()) return m;
+  const std::vector<MovingRegion> regions =
+      boxes ? movingRegions(f, *boxes, {}) : std::vector<MovingRegion>{};
   if (boxes) {
     const cv::Rect image(0, 0, m.cols, m.rows);
-    for (const MovingRegion& r : movingRegions(f, *boxes, {})) {
+    for (const MovingRegion& r : regions) {
       if (r.far_m <= 0)
         m(cv::Rect(r.box) & image).setTo(255);
       else
@@ -339,7 +345,7 @@ cv::Mat DynamicStage::mask(const Features& f, const FrameGeometry& g, const std:
     // several people would take the floor and wall between them.
     std::vector<uint8_t> unboxed = dynamic;
     if (boxes) {
-      const std::vector<int8_t> z = boxObservation(f, *boxes, {});
+      const std::vector<int8_t> z = regionObservation(f, *boxes, regions);
       for (std::size_t i = 0; i < unboxed.size(); ++i) unboxed[i] = unboxed[i] && !z[i];
     }
     maskDynamicClusters(f, g, unboxed, depth, depth_scale, m);

@@ -66,6 +66,10 @@ class DynamicStage {
  private:
   std::vector<int8_t> boxObservation(const Features& f, const std::vector<ObjectBox>& boxes,
                                      const std::vector<float>& moving_share) const;
+  // The region test (paper section 3.2) per keypoint, with the boxes' moving regions already found: 1 inside
+  // a region (at its depth when refined) and not vetoed by a low-dynamic box.
+  static std::vector<int8_t> regionObservation(const Features& f, const std::vector<ObjectBox>& boxes,
+                                               const std::vector<MovingRegion>& regions);
   // Keypoint i's prior (posterior_before, carried) updated by this frame's box observation, if any.
   void observeBoxes(Frame& frame, int i, double posterior_before) const;
   void observeGeometry(Frame& frame, int i, bool moved) const;
