@@ -307,17 +307,13 @@ void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes
 
 namespace {
 
-double depthAt(const cv::Mat& depth, int u, int v, double depth_scale) {
-  return depth.type() == CV_32FC1 ? depth.at<float>(v, u) : depth.at<uint16_t>(v, u) / depth_scale;
-}
-
 // Marks the pixels of box (clipped to m) with no depth or a depth in [near_m, far_m].
 void markAtDepth(const cv::Rect& box, double near_m, double far_m, const cv::Mat& depth, double depth_scale,
                  cv::Mat& m) {
   const cv::Rect r = box & cv::Rect(0, 0, m.cols, m.rows);
   for (int v = r.y; v < r.y + r.height; ++v)
     for (int u = r.x; u < r.x + r.width; ++u) {
-      const double d = depthAt(depth, u, v, depth_scale);
+      const double d = depthMetresAt(depth, u, v, depth_scale);
       if (d <= 0 || (d >= near_m && d <= far_m)) m.at<uint8_t>(v, u) = 255;
     }
 }
@@ -331,14 +327,12 @@ cv::Mat DynamicStage::mask(const Features& f, const FrameGeometry& g, const std:
   if (!enabled()) return m;
   const std::vector<MovingRegion> regions =
       boxes ? movingRegions(f, *boxes, {}) : std::vector<MovingRegion>{};
-  if (boxes) {
-    const cv::Rect image(0, 0, m.cols, m.rows);
-    for (const MovingRegion& r : regions) {
-      if (r.far_m <= 0)
-        m(cv::Rect(r.box) & image).setTo(255);
-      else
-        markAtDepth(cv::Rect(r.box), r.near_m, r.far_m, depth, depth_scale, m);
-    }
+  const cv::Rect image(0, 0, m.cols, m.rows);
+  for (const MovingRegion& r : regions) {
+    if (r.far_m <= 0)
+      m(cv::Rect(r.box) & image).setTo(255);
+    else
+      markAtDepth(cv::Rect(r.box), r.near_m, r.far_m, depth, depth_scale, m);
   }
   if (options_.mode == DynamicMode::kGeometric && options_.cluster_min_moved > 0) {
     // The movers no box holds: a person's region covers the person already, and a cluster's box spanning

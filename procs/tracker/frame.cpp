@@ -61,7 +61,7 @@ std::shared_ptr<const Features> buildFeatures(OrbFeatures orb, const cv::Mat& de
     const int x = cvRound(pt.x), y = cvRound(pt.y);
     // Depth is registered to the raw (distorted) colour image, so it is read at the raw pixel.
     if (!depth.empty() && x >= 0 && y >= 0 && x < depth.cols && y < depth.rows) {
-      double d = depth.type() == CV_16UC1 ? depth.at<uint16_t>(y, x) / scale : depth.at<float>(y, x);
+      const double d = depthMetresAt(depth, x, y, scale);
       if (std::isfinite(d) && d >= g.min_depth && d <= g.max_depth) f->depth[i] = static_cast<float>(d);
     }
     if (!exclusion_mask.empty() && x >= 0 && y >= 0 && x < exclusion_mask.cols && y < exclusion_mask.rows &&

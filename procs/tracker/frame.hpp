@@ -104,6 +104,11 @@ void Features::forEachInArea(const FrameGeometry& g, double u, double v, double 
   }
 }
 
+// The depth at pixel (u, v) in metres: depth CV_32FC1 metres, else CV_16UC1 raw units over depth_scale.
+inline double depthMetresAt(const cv::Mat& depth, int u, int v, double depth_scale) {
+  return depth.type() == CV_32FC1 ? depth.at<float>(v, u) : depth.at<uint16_t>(v, u) / depth_scale;
+}
+
 // Builds the per-keypoint data from ORB output. depth: CV_16UC1 (raw units, scaled by the camera's
 // depth_scale) or CV_32FC1 metres, registered to the colour image; may be empty.
 std::shared_ptr<const Features> buildFeatures(OrbFeatures orb, const cv::Mat& depth, const FrameGeometry& g,
