@@ -330,6 +330,54 @@ TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
       << log;
 }
 
+// The same, with the real camera's first frame dropped from the tracker's queue: the forged frame, 8000x6000,
+// keeps the tracker busy while a burst of real frames overflows its queue (4 frames). The frame whose camera
+// replaced the forged one was among those dropped; the frames tracked must still start a map of their own,
+// not go on in the forged camera's (whose size is not even theirs).
+TEST(TrackerProcess, ACameraReplacedInAFrameDroppedFromTheQueueStillStartsANewMap) {
+  TrackerUnderTest t("tracker_forged_first_frame_dropped", 7);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  rgbd_frame_t forged = t.frame(0);
+  forged.seq = 900;
+  forged.camera.width = 8000;
+  forged.camera.height = 6000;
+  forged.camera.cx = 4000;
+  forged.camera.cy = 3000;
+  forged.color =
+      toMsg(encodeImage(cv::Mat(6000, 8000, CV_8UC3, cv::Scalar(90, 120, 150)), ImageEncoding::kPng));
+  forged.depth = toMsg(encodeImage(cv::Mat(6000, 8000, CV_16UC1, cv::Scalar(10000)), ImageEncoding::kPng));
+  t.publish("RGBD_FRAME", forged);
+  const int burst = 8;
+  for (int i = 0; i < burst; ++i) t.publish("RGBD_FRAME", t.frame(i));
+  ASSERT_TRUE(t.pumpUntil([&] { return !t.poses.empty() && t.poses.back().seq == burst - 1; }, 60.0))
+      << "no pose for the burst's last frame; log " << t.logPath();
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  t.pumpUntil([&] { return false; }, 1.0);  // the held keyframes, sent as the tracker stops
+  const std::string log = test::readText(t.logPath());
+  // The case this test is about: real frames, the first of them among them, gave way in the queue.
+  EXPECT_EQ(log.find(" 0 dropped while busy"), std::string::npos) << log;
+  std::vector<int64_t> tracked;
+  for (const slam_pose_t& p : t.poses)
+    if (p.seq < burst) tracked.push_back(p.seq);
+  ASSERT_GE(tracked.size(), 3u) << log;
+  EXPECT_GT(tracked.front(), 0) << "the first real frame was tracked; it should have been dropped. " << log;
+  for (const slam_pose_t& p : t.poses) {
+    if (p.seq == 900) continue;  // the forged frame's own answer
+    EXPECT_EQ(static_cast<int>(p.state), static_cast<int>(slam_pose_t::STATE_OK)) << p.seq << ": " << p.note;
+  }
+  // The forged frame's featureless image started no keyframe, but the tracker was made with its camera.
+  EXPECT_NE(log.find("dropping the map of 0 keyframe(s)"), std::string::npos) << log;
+  EXPECT_NE(log.find("camera 640x480 fx 542.823 from rgbd_bonn_crowd"), std::string::npos) << log;
+  ASSERT_FALSE(t.keyframes.empty()) << log;
+  for (const keyframe_t& kf : t.keyframes) {
+    EXPECT_DOUBLE_EQ(kf.camera.fx, bonnCamera().fx) << kf.id;
+    EXPECT_EQ(kf.camera.width, 640) << kf.id;
+  }
+  const Trajectory written = readTumTrajectory(t.trajectory());
+  ASSERT_EQ(written.size(), tracked.size());  // the real frames only
+  EXPECT_NEAR(written.front().stamp, utimeToSeconds(t.frame(static_cast<int>(tracked.front())).utime), 1e-6);
+}
+
 // Answers from another publisher: one for an image of another size, one naming a frame already heard with
 // another stamp. Each is refused with the reason (counted as malformed), and tracking goes on. The
 // detector's own answer for a frame it could not read (skipped, no boxes, no image size) is not refused.

@@ -230,7 +230,7 @@ void TrackerNode::process(const Queued& frame) {
   const rgbd_frame_t& msg = frame.msg;
   const FrameStream::Verdict& verdict = frame.verdict;
   if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. resynchronised
-  if (verdict.new_camera) startAgainForNewCamera();
+  if (tracker_ && !map_camera_.holds(msg.camera, msg.depth_scale)) startAgainForNewCamera();
   camera_settled_ = verdict.camera_settled;
   if (verdict.lost_before > 0)
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
@@ -253,6 +253,7 @@ void TrackerNode::process(const Queued& frame) {
   if (!tracker_) {
     const CameraIntrinsics camera = fromMsg(msg.camera, msg.depth_scale);
     tracker_ = std::make_unique<Tracker>(camera, config_);
+    map_camera_.pin(msg.camera, msg.depth_scale);
     log::info("camera ", camera.width, "x", camera.height, " fx ", camera.fx, " from ", msg.source);
   }
   TrackerInput input;

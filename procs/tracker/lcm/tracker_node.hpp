@@ -20,6 +20,7 @@
 #include "bmp/common/timing.hpp"
 #include "bmp/common/tum_trajectory.hpp"
 #include "bmp/common/warning_throttle.hpp"
+#include "bmp/lcm/camera_pin.hpp"
 #include "bmp/lcm/frame_checks.hpp"
 #include "bmp/lcm/last_answer.hpp"
 #include "bmp/lcm/process.hpp"
@@ -125,6 +126,9 @@ class TrackerNode {
   int64_t late_applied_ = 0;
   int64_t stale_boxes_used_ = 0;  // frames observed with an earlier frame's boxes
   std::unique_ptr<Tracker> tracker_;
+  // The camera tracker_ was made with. The frame whose camera replaced it (verdict.new_camera) may have been
+  // dropped from the queue, so each tracked frame's camera is compared with it, not only that flag.
+  CameraPin map_camera_{1};
   TrackerOutputs outputs_;
   std::optional<TumTrajectoryStream> live_trajectory_;
   std::optional<TumTrajectoryStream> live_keyframes_;

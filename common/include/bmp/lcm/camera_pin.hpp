@@ -29,6 +29,10 @@ class CameraPin {
   void used() { ++uses_; }
   bool settled() const { return pinned_ && uses_ >= settle_count_; }
   const camera_t* camera() const { return pinned_ ? &pinned_->camera : nullptr; }
+  // Whether this is the pinned camera (false when none is pinned).
+  bool holds(const camera_t& camera, double depth_scale) const {
+    return fit(camera, depth_scale) == Fit::kSame;
+  }
   int64_t uses() const { return uses_; }
   // "640x480 fx ... depth scale 5000" for this camera, or for another one.
   std::string describe() const;
