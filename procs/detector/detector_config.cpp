@@ -38,7 +38,9 @@ DetectorConfig detectorConfigFromYaml(const Config& config) {
   c.nms_threshold = static_cast<float>(detection.get<double>("nms_threshold", c.nms_threshold));
   detection.check(c.nms_threshold > 0 && c.nms_threshold <= 1, "nms_threshold", "must be in (0, 1]");
   c.max_detections = detection.get<int>("max_detections", c.max_detections);
-  detection.check(c.max_detections > 0, "max_detections", "must be positive");
+  detection.check(
+      c.max_detections > 0 && c.max_detections <= kMaxDetectionsPerFrame, "max_detections",
+      "must be in [1, " + std::to_string(kMaxDetectionsPerFrame) + "], the most DETECTIONS carries");
   c.threads = detection.get<int>("threads", c.threads);
   detection.check(c.threads > 0, "threads", "must be positive");
   return c;

@@ -8,6 +8,9 @@
 
 namespace bmp::detector {
 
+// The most boxes one frame's answer may carry: DETECTIONS' MAX_DETECTIONS (checked where both are seen).
+inline constexpr int kMaxDetectionsPerFrame = 300;
+
 struct DetectorConfig {
   ModelKind kind = ModelKind::kOnnx;
   // Paths relative to the shared folder (see shared_paths.hpp) or absolute.
@@ -17,8 +20,8 @@ struct DetectorConfig {
   int input_size = 320;
   float conf_threshold = 0.25f;  // objectness x class probability
   float nms_threshold = 0.45f;   // IoU above which a lower-scored box of the same class is dropped
-  int max_detections = 100;
-  int threads = 2;  // OpenCV's worker threads (process-wide in OpenCV)
+  int max_detections = 100;      // at most kMaxDetectionsPerFrame
+  int threads = 2;               // OpenCV's worker threads (process-wide in OpenCV)
 
   // The model files, resolved against the shared folder.
   ModelSpec modelSpec() const;

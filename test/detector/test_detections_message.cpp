@@ -114,6 +114,11 @@ TEST(DetectionsMessage, MalformedMessagesAreRefusedNamingFrameAndReason) {
       {"skipped (busy) yet carries boxes", [](detections_t& m) { m.skipped = "busy"; }},
       {"class 80 is not a COCO index", [](detections_t& m) { m.detections[1].class_id = 80; }},
       {"class -1 is not a COCO index", [](detections_t& m) { m.detections[0].class_id = -1; }},
+      {"301 boxes, over the 300 a detector may send",
+       [](detections_t& m) {
+         m.detections.resize(301, m.detections[0]);
+         m.num_detections = 301;
+       }},
   };
   for (const Case& c : cases) {
     detections_t bad = good;

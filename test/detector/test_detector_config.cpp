@@ -73,6 +73,13 @@ TEST(DetectorConfigYaml, ReadsRepositoryFileAndRejectsBadValues) {
   const std::string msg = messageOf(
       [] { detectorConfigFromYaml(Config::fromString("detection: {conf_threshold: 1.5}", "t.yaml")); });
   EXPECT_NE(msg.find("detection.conf_threshold"), std::string::npos) << msg;
+  // More boxes than a DETECTIONS answer may carry: the tracker would refuse every busy frame's answer.
+  EXPECT_EQ(
+      detectorConfigFromYaml(Config::fromString("detection: {max_detections: 300}", "m.yaml")).max_detections,
+      300);
+  const std::string many = messageOf(
+      [] { detectorConfigFromYaml(Config::fromString("detection: {max_detections: 301}", "m.yaml")); });
+  EXPECT_NE(many.find("'detection.max_detections' must be in [1, 300]"), std::string::npos) << many;
 }
 
 TEST(DetectorModel, MissingModelFileFailsAtStartUpNamingIt) {

@@ -7,6 +7,7 @@ namespace bmp::detector {
 static_assert(static_cast<int>(DynamicLevel::kHigh) == detection_t::LEVEL_HIGH &&
               static_cast<int>(DynamicLevel::kMedium) == detection_t::LEVEL_MEDIUM &&
               static_cast<int>(DynamicLevel::kLow) == detection_t::LEVEL_LOW);
+static_assert(kMaxDetectionsPerFrame == detections_t::MAX_DETECTIONS);
 
 detections_t toDetectionsMessage(const FrameResult& result, const std::string& model) {
   detections_t msg;
@@ -62,6 +63,9 @@ FrameDetections fromDetectionsMessage(const detections_t& msg) {
   }
   check(msg.image_width > 0 && msg.image_height > 0, msg,
         "image size " + std::to_string(msg.image_width) + "x" + std::to_string(msg.image_height));
+  check(msg.num_detections <= detections_t::MAX_DETECTIONS, msg,
+        std::to_string(msg.num_detections) + " boxes, over the " +
+            std::to_string(detections_t::MAX_DETECTIONS) + " a detector may send");
   // Boxes are clipped to the image by the detector; a pixel of slack allows for float rounding.
   const float slack = 1.0f;
   for (std::size_t i = 0; i < msg.detections.size(); ++i) {

@@ -33,8 +33,9 @@ struct FrameDetections {
 detections_t toDetectionsMessage(const FrameResult& result, const std::string& model);
 
 // Throws DetectionsMessageError for an unknown level, a class outside COCO's 0..79, a non-finite or empty
-// box, a box outside the image, a score outside [0, 1], an image without size, or a skipped frame that
-// carries boxes: another publisher's message is not trusted blindly.
+// box, a box outside the image, a score outside [0, 1], an image without size, more boxes than
+// detections_t::MAX_DETECTIONS, or a skipped frame that carries boxes: another publisher's message is not
+// trusted blindly.
 FrameDetections fromDetectionsMessage(const detections_t& msg);
 
 }  // namespace bmp::detector
