@@ -15,7 +15,8 @@ void addOptions(ArgParser& args) {
       "Writes DIR/map.pcd, map.ply, map.bt, occupancy.yaml + occupancy.N.pgm (ROS map_server; the YAML\n"
       "names the save's numbered image), occupancy.pgm (the latest image), cloud_top.png,\n"
       "cloud_oblique.png and occupancy.png on exit (SIGINT/SIGTERM), on SIGUSR1 and every\n"
-      "process.save_period_s seconds. Example:\n"
+      "process.save_period_s seconds. A run that maps no keyframe leaves a map already in DIR as it\n"
+      "was. Example:\n"
       "  bmp-mapper --out out/latest/map &  kill -USR1 $!   # save now\n");
 }
 
@@ -30,7 +31,7 @@ int run(ProcessContext& ctx) {
   ctx.status.tick(true);
   node.run();
   // Every exit but a kill: what was mapped is on disk, or the exit status says it is not.
-  const bool saved = node.save("exit");
+  const bool saved = node.saveAtExit();
   ctx.status.finish();
   return saved ? 0 : 1;
 }

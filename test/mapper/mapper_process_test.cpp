@@ -28,8 +28,10 @@ namespace fs = std::filesystem;
 
 class MapperUnderTest {
  public:
-  MapperUnderTest()
+  // prepare, when given, fills the fresh scratch folder before the mapper starts (a map left there).
+  explicit MapperUnderTest(const std::function<void(const fs::path& map_dir)>& prepare = {})
       : url_(bmp::test::uniqueLcmUrl(0)), dir_(bmp::test::scratchDir("mapper_process")), node_(url_) {
+    if (prepare) prepare(dir_ / "map");
     node_.subscribe<process_status_t>("PROCESS_STATUS",
                                       [this](const process_status_t& m, const ReceivedInfo&) {
                                         if (m.name == "bmp-mapper") status = m;
@@ -190,6 +192,27 @@ TEST(MapperProcess, FailedSaveAtExitIsANonZeroExit) {
   std::ofstream(m.mapDir()) << "not a folder";
   EXPECT_EQ(m.child().stop(20.0), 1) << m.log();
   EXPECT_NE(m.log().find("map not saved (exit)"), std::string::npos) << m.log();
+}
+
+// Restarted on a folder that holds a map and stopped before any keyframe came (the tracker down, or every
+// keyframe refused): the map there stays as it was. The exit's save once replaced it with an empty one.
+TEST(MapperProcess, StoppedBeforeAnyKeyframeItLeavesAMapInTheFolderAsItWas) {
+  const std::string yesterday = "# yesterday's map: not to be replaced by an empty one\n";
+  MapperUnderTest m([&](const fs::path& map_dir) {
+    fs::create_directories(map_dir);
+    for (const char* name : {"map.pcd", "map.bt", "occupancy.yaml"})
+      std::ofstream(map_dir / name) << yesterday;
+  });
+  ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
+  ASSERT_TRUE(m.child().running()) << m.log();
+  EXPECT_EQ(m.child().stop(20.0), 0) << m.log();
+  for (const char* name : {"map.pcd", "map.bt", "occupancy.yaml"})
+    EXPECT_EQ(bmp::test::readText((m.mapDir() / name).string()), yesterday) << name;
+  EXPECT_FALSE(fs::exists(m.mapDir() / "map.ply"));
+  EXPECT_NE(m.log().find("no keyframe mapped in this run: the map already in " + m.mapDir().string() +
+                         " is left as it was"),
+            std::string::npos)
+      << m.log();
 }
 
 }  // namespace

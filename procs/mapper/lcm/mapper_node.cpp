@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/log.hpp"
@@ -165,6 +166,15 @@ bool MapperNode::save(const std::string& why) {
     log::error("map not saved (", why, "): ", e.what());
     return false;
   }
+}
+
+bool MapperNode::saveAtExit() {
+  if (mapper_->keyframeCount() == 0 && !saved_points_ &&
+      std::filesystem::exists(std::filesystem::path(out_dir_) / "map.pcd")) {
+    log::warn("no keyframe mapped in this run: the map already in ", out_dir_, " is left as it was");
+    return true;
+  }
+  return save("exit");
 }
 
 std::string MapperNode::statusLine() const {

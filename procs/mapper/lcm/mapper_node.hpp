@@ -29,6 +29,9 @@ class MapperNode {
   // Writes every map file into the output folder; returns false when it could not. A failure is logged,
   // never fatal here (the map lives on); the last save decides the exit status.
   bool save(const std::string& why);
+  // The save at exit. A run that mapped nothing leaves a map already in the folder as it was: a mapper
+  // restarted on yesterday's folder and stopped before any keyframe came must not replace it with nothing.
+  bool saveAtExit();
 
  private:
   void onKeyframe(const keyframe_t& msg);
