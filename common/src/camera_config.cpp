@@ -33,6 +33,7 @@ void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
     c.check(std::abs(d) <= kMaxDistortionCoefficient, "distortion",
             "coefficients must lie within +-10 (a lens's)");
   }
+  c.check(undistortionProblem(k).empty(), "distortion", undistortionProblem(k));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "mapper/keyframe_cloud.hpp"
 
+#include <cmath>
+
 #include <opencv2/imgproc.hpp>
 
 namespace bmp::mapper {
@@ -27,6 +29,7 @@ PointList backProject(const KeyframeInput& kf, const RayTable& rays, const Cloud
       const double z = depth_row[u] * scale;
       if (z < settings.min_depth_m || z > settings.max_depth_m) continue;
       const cv::Vec2f& ray = rays.ray(u, v);
+      if (!std::isfinite(ray[0]) || !std::isfinite(ray[1])) continue;  // beyond the lens model's fold
       ColoredPoint p;
       p.x = static_cast<float>(ray[0] * z);
       p.y = static_cast<float>(ray[1] * z);

@@ -22,7 +22,7 @@ std::string checkCamera(const CameraIntrinsics& k) {
     return "camera size " + std::to_string(k.width) + "x" + std::to_string(k.height) + " out of range";
   if (k.fx <= 0 || k.fy <= 0) return "focal lengths must be positive";
   if (k.depth_scale <= 0) return "depth_scale must be positive";
-  return "";
+  return undistortionProblem(k);  // its rays would not be finite
 }
 
 std::string checkSize(const cv::Size& size, const CameraIntrinsics& k, const char* what) {

@@ -24,7 +24,7 @@ cv::Mat render(const PointList& cloud, const View& view, double max_height, cons
   Eigen::Vector2d hi = -lo;
   for (const auto& p : cloud) {
     const Eigen::Vector3d q(p.x, p.y, p.z);
-    if (frame.height(q) > max_height) continue;
+    if (!q.allFinite() || frame.height(q) > max_height) continue;  // a point not a number has no pixel
     projected.emplace_back(view.right.dot(q), view.down.dot(q), view.forward.dot(q));
     colours.emplace_back(p.b, p.g, p.r);
     lo = lo.cwiseMin(projected.back().head<2>());

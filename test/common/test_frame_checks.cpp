@@ -57,8 +57,16 @@ TEST(FrameChecks, UnusableCamerasAreRefusedWithTheReason) {
   f.camera.distortion[0] = 1e300;  // finite, but undistortion diverges to infinity under it
   EXPECT_NE(checkFrame(f).find("camera distortion coefficient"), std::string::npos) << checkFrame(f);
   f = frame(0);
-  f.camera.distortion[4] = -kMaxDistortionCoefficient;  // strong, but a lens's
+  f.camera.distortion[4] = kMaxDistortionCoefficient;  // strong, but a lens's (pincushion: never folds)
   EXPECT_EQ(checkFrame(f), "");
+  f = frame(0);
+  // Barrel distortion that folds over inside the image (the corners, 1 focal length out, have no ray):
+  // undistortion there once went to 1e150 and NaN, and a map with such points crashed the mapper's picture.
+  f.camera.distortion[0] = -0.5;
+  EXPECT_NE(
+      checkFrame(f).find("camera: the lens distortion cannot be undone at pixel (0, 0) of the 8x6 image"),
+      std::string::npos)
+      << checkFrame(f);
   f = frame(0);
   f.camera.width = -3;
   EXPECT_NE(checkFrame(f).find("camera size"), std::string::npos);

@@ -81,6 +81,11 @@ TEST(MapperMessages, NonFinitePoseOrIntrinsics) {
   m = good();
   m.camera.distortion[1] = -1e300;
   EXPECT_NE(reasonOf(m).find("distortion coefficient"), std::string::npos) << reasonOf(m);
+  m = good();
+  // Within range, but folding over inside the image: its outer rays are not numbers, and one such point
+  // in the cloud crashed the map's pictures at the save.
+  m.camera.distortion[0] = -0.5;
+  EXPECT_NE(reasonOf(m).find("lens distortion cannot be undone at pixel"), std::string::npos) << reasonOf(m);
 }
 
 TEST(MapperMessages, PoseUpdatesAndOutgoingMessages) {

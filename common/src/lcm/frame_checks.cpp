@@ -4,6 +4,7 @@
 
 #include "bmp/common/camera_model.hpp"
 #include "bmp/common/image_codec.hpp"
+#include "bmp/lcm/conversions.hpp"
 
 namespace bmp {
 
@@ -24,6 +25,7 @@ std::string checkCamera(const camera_t& c) {
       return "camera distortion coefficient " + std::to_string(d) +
              " is not a lens's (|k| <= " + std::to_string(static_cast<int>(kMaxDistortionCoefficient)) + ")";
   }
+  if (std::string why = undistortionProblem(fromMsg(c, 1.0)); !why.empty()) return "camera: " + why;
   return "";
 }
 

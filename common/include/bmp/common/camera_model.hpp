@@ -1,6 +1,7 @@
 #pragma once
 // Pinhole camera with radial-tangential distortion (OpenCV's plumb-bob model: k1, k2, p1, p2, k3).
 #include <array>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -21,6 +22,10 @@ struct CameraIntrinsics {
 // angles included); under much larger ones undistortion diverges to infinity.
 constexpr double kMaxDistortionCoefficient = 10.0;
 
+// "" when the lens distortion can be undone over the whole image (tested along its border, where the
+// distortion is largest); else which pixel it cannot and why. Expects finite intrinsics with fx, fy > 0.
+std::string undistortionProblem(const CameraIntrinsics& k);
+
 class CameraModel {
  public:
   explicit CameraModel(const CameraIntrinsics& intrinsics);
@@ -30,7 +35,10 @@ class CameraModel {
 
   // Normalised undistorted coordinates -> distorted pixel.
   Eigen::Vector2d distortNormalized(const Eigen::Vector2d& xy) const;
-  // Distorted pixel -> undistorted pixel (iterative inversion of the distortion).
+  // d distortNormalized / d xy.
+  Eigen::Matrix2d distortionJacobian(const Eigen::Vector2d& xy) const;
+  // Distorted pixel -> undistorted pixel (Newton's method on the distortion). NaN where the distortion
+  // cannot be undone to within a thousandth of a pixel (beyond the model's fold).
   Eigen::Vector2d undistortPixel(const Eigen::Vector2d& uv) const;
   // A point in the camera frame (z forward) -> distorted pixel. z must be positive.
   Eigen::Vector2d project(const Eigen::Vector3d& p_cam) const;
