@@ -48,5 +48,43 @@ TEST(LauncherUsage, BadOptionsAreRefusedBeforeAnythingStarts) {
   }
 }
 
+// A dataset capture would refuse at start-up (no lists, a malformed line, a broken camera file), or a
+// process in run.yaml that is not built: refused before the run folder is touched. Each once set the earlier
+// run in --out aside into previous/ and left an empty one in its place, so a second such attempt lost it.
+TEST(LauncherUsage, ADatasetCaptureWouldRefuseLeavesTheEarlierRunInOutAsItWas) {
+  const fs::path dir = test::scratchDir("launcher_earlier_run");
+  std::ofstream(dir / "run.yaml") << "run:\n  output_root: " << (dir / "root").string()
+                                  << "\n  processes:\n    bmp-test-listener: [--ack]\n  capture_args: []\n";
+  std::ofstream(dir / "misspelt.yaml") << "run:\n  output_root: " << (dir / "root").string()
+                                       << "\n  processes:\n    bmp-trakcer: []\n  capture_args: []\n";
+  fs::create_directories(dir / "run" / "logs");
+  std::ofstream(dir / "run" / "eval.json") << "{\"ate_rmse_m\": 0.0108}\n";
+  fs::create_directories(dir / "empty");
+  fs::create_directories(dir / "malformed");
+  std::ofstream(dir / "malformed" / "rgb.txt") << "1305031102.175304 rgb/1.png\nnot a line\n";
+  std::ofstream(dir / "malformed" / "depth.txt") << "1305031102.160407 depth/1.png\n";
+  std::ofstream(dir / "camera.yaml") << "camera: {width: 640}\n";
+  const std::string bonn = test::bonnDir();
+  const std::string run_yaml = (dir / "run.yaml").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--config", run_yaml, "--dataset", (dir / "empty").string()}, "rgb.txt is missing"},
+      {{"--config", run_yaml, "--dataset", (dir / "malformed").string()}, "malformed/rgb.txt:2: "},
+      {{"--config", run_yaml, "--dataset", bonn, "--camera", (dir / "camera.yaml").string()},
+       "camera.yaml: required key 'camera.height' is missing"},
+      {{"--config", run_yaml, "--dataset", (dir / "run.yaml").string()}, "not a folder"},
+      {{"--config", (dir / "misspelt.yaml").string(), "--dataset", bonn}, "bmp-trakcer: not built"}};
+  for (const auto& [bad, message] : cases) {
+    std::vector<std::string> argv = {binPath("bmp-run"), "--lcm-url", "memq://", "--out",
+                                     (dir / "run").string()};
+    argv.insert(argv.end(), bad.begin(), bad.end());
+    const Outcome o = runCommand("launcher_earlier_run", argv, 60);
+    EXPECT_NE(o.status, 0) << message << ": " << o.output;
+    EXPECT_NE(o.output.find(message), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("started "), std::string::npos) << o.output;
+    EXPECT_EQ(test::readText((dir / "run" / "eval.json").string()), "{\"ate_rmse_m\": 0.0108}\n") << message;
+    EXPECT_FALSE(fs::exists(dir / "run" / "previous")) << message;
+  }
+}
+
 }  // namespace
 }  // namespace bmp

@@ -4,6 +4,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -19,6 +20,8 @@
 #include "bmp/common/timing.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "bmp/lcm/process.hpp"
+#include "capture/camera_selection.hpp"
+#include "capture/tum_sequence.hpp"
 #include "launcher/launch_plan.hpp"
 #include "launcher/output_relay.hpp"
 #include "launcher/run_folder.hpp"
@@ -69,13 +72,27 @@ void require(bool ok, const ArgParser& args, const std::string& option, const st
   if (!ok) throw ArgError("bmp-run: --" + option + " '" + args.value(option) + "': " + rule);
 }
 
+// The folder's lists and camera as bmp-capture will read them: one it would refuse at start-up must not
+// set aside the earlier run in --out (two such attempts would lose it) nor start the other processes.
+// Pairing colour with depth is capture's, by its own tolerance: here any pair will do.
+void checkDataset(const ArgParser& args, const std::string& dataset, const std::string& camera) {
+  try {
+    capture::indexSequence(dataset, std::numeric_limits<double>::infinity());
+    capture::selectCamera(dataset, camera, configDir() + "/cameras");
+  } catch (const std::exception& e) {  // SequenceError or ConfigError, naming the file and line or key
+    throw ArgError("bmp-run: --dataset '" + args.value("dataset") + "': " + e.what());
+  }
+}
+
 // Every option checked before anything starts: a run that cannot be what was asked must not begin.
 RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   RunRequest request;
   request.dataset = args.value("dataset");
-  require(request.dataset.empty() || fs::is_directory(request.dataset), args, "dataset", "no such folder");
+  require(request.dataset.empty() || fs::is_directory(request.dataset), args, "dataset",
+          fs::exists(request.dataset) ? "not a folder" : "no such folder");
   request.camera = args.value("camera");
   require(request.camera.empty() || fs::is_regular_file(request.camera), args, "camera", "no such file");
+  if (!request.dataset.empty()) checkDataset(args, request.dataset, request.camera);
   request.mode = args.value("mode");
   require(!args.given("mode") || isCaptureMode(request.mode), args, "mode",
           "must be lockstep, realtime or fast");
@@ -86,15 +103,16 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   if (args.given("loop")) integerIn(args, "loop", 1, kMaxLoops);
   request.lcm_url = resolveLcmUrl(args.value("lcm-url"));
   request.bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
-  request.out_dir = args.given("out")
-                        ? args.value("out")
-                        : (fs::path(settings.output_root) / runFolderName(request.dataset)).string();
+  request.out_dir =
+      fs::absolute(args.given("out") ? fs::path(args.value("out"))
+                                     : fs::path(settings.output_root) / runFolderName(request.dataset))
+          .string();
   return request;
 }
 
-// Creates the run folder and its logs/ and makes request.out_dir absolute; a folder chosen by us (not by
-// --out) is also linked as <output_root>/latest. Returns the logs folder.
-fs::path prepareRunFolder(RunRequest& request, const RunSettings& settings, bool link_latest) {
+// Creates the run folder and its logs/; a folder chosen by us (not by --out) is also linked as
+// <output_root>/latest. Returns the logs folder.
+fs::path prepareRunFolder(const RunRequest& request, const RunSettings& settings, bool link_latest) {
   const fs::path logs = fs::path(request.out_dir) / "logs";
   if (setAsideEarlierRun(request.out_dir))
     log::info("the earlier run in ", request.out_dir, " is kept in ",
@@ -106,7 +124,6 @@ fs::path prepareRunFolder(RunRequest& request, const RunSettings& settings, bool
     fs::remove(latest, ignored);
     fs::create_directory_symlink(fs::path(request.out_dir).filename(), latest, ignored);
   }
-  request.out_dir = fs::absolute(request.out_dir).string();
   return logs;
 }
 
@@ -250,11 +267,11 @@ int runSession(const ArgParser& args) {
   const RunSettings settings = runSettingsFromConfig(config.section("run"));
   config.finish();
 
-  RunRequest request = requestFromArgs(args, settings);
-  const fs::path logs = prepareRunFolder(request, settings, !args.given("out"));
+  const RunRequest request = requestFromArgs(args, settings);
   const LaunchPlan plan = makePlan(settings, request);
+  checkBuilt(plan);  // before the run folder: a misspelt process in run.yaml touches no earlier run
+  const fs::path logs = prepareRunFolder(request, settings, !args.given("out"));
   log::info("run folder ", request.out_dir, ", LCM ", request.lcm_url);
-  checkBuilt(plan);
 
   Session session(settings, request, logs);
   startProcesses(session, plan);
