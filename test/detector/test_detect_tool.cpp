@@ -1,4 +1,5 @@
-// Runs the bmp-detect executable: option values checked, what it says about the images it reads.
+// Runs the bmp-detect and bmp-bench-detector executables: option values checked, what they say about the
+// images they read.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -59,6 +60,49 @@ TEST(DetectTool, ACorruptImageIsSkippedNamingItAndTheRestAreRead) {
   const ToolRun none = detect({"--input", dir.string()});
   EXPECT_EQ(none.status, 1) << none.output;
   EXPECT_NE(none.output.find(dir.string() + ": no image could be read"), std::string::npos) << none.output;
+}
+
+ToolRun bench(std::vector<std::string> arguments) {
+  arguments.insert(arguments.begin(), test::binPath("bmp-bench-detector"));
+  return test::runCommand("bench_detector_run", std::move(arguments), 120);
+}
+
+// bmp-bench-detector: --frames 0 ended in a floating-point exception, -1 quietly meant every frame, and an
+// unknown model was found only after the table's header. Each is now a usage error naming the option.
+TEST(BenchDetectorTool, CountsAndModelsOutsideTheirRangeAreUsageErrors) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--frames", "0"}, "--frames must be an integer from 1 to 1000000, got '0'"},
+      {{"--frames", "-1"}, "--frames must be an integer from 1 to 1000000, got '-1'"},
+      {{"--warmup", "-1"}, "--warmup must be an integer from 0 to 1000000, got '-1'"},
+      {{"--threads", "0"}, "--threads must be an integer from 1 to 256, got '0'"},
+      {{"--models", ""}, "--models names no model"},
+      {{"--models", "yolov5n-320,bogus"}, "--models: unknown model 'bogus'"}};
+  for (const auto& [arguments, message] : cases) {
+    const ToolRun r = bench(arguments);
+    EXPECT_EQ(r.status, 2) << arguments[0] << " " << arguments[1] << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("median_ms"), std::string::npos) << r.output;  // no table started
+  }
+}
+
+// A corrupt image among those timed stopped the benchmark with a message naming no file: it is left out,
+// named, and the rest are timed.
+TEST(BenchDetectorTool, ACorruptImageIsLeftOutNamingItAndTheRestAreTimed) {
+  const fs::path dir = test::scratchDir("bench_images");
+  fs::copy_file(test::sharedPath("images/bus.jpg"), dir / "a.jpg");
+  fs::copy_file(test::sharedPath("images/zidane.jpg"), dir / "c.jpg");
+  {
+    std::ifstream in(test::sharedPath("images/person.jpg"), std::ios::binary);
+    std::string head(2000, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    std::ofstream(dir / "b.jpg", std::ios::binary) << head;  // cut inside its headers
+  }
+  const ToolRun r =
+      bench({"--input", dir.string(), "--frames", "3", "--warmup", "0", "--models", "yolov5n-320"});
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find((dir / "b.jpg").string() + ": JPEG truncated"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 frames of " + dir.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("yolov5n_coco_320              320     2 "), std::string::npos) << r.output;
 }
 
 }  // namespace
