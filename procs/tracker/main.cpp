@@ -1,6 +1,9 @@
 // bmp-tracker: RGBD_FRAME in; SLAM_POSE (every frame), SLAM_KEYFRAME and SLAM_KEYFRAME_POSES out. The
 // algorithm is bmp::tracker::Tracker, its settings and options TrackerSettings, its LCM side TrackerNode
 // (lcm/); this file reads the settings, runs the node and writes the trajectories on exit.
+#include <limits>
+
+#include "bmp/common/arg_range.hpp"
 #include "bmp/lcm/process.hpp"
 #include "tracker/lcm/tracker_node.hpp"
 #include "tracker/tracker_settings.hpp"
@@ -12,6 +15,7 @@ using namespace bmp::tracker;
 
 int run(ProcessContext& ctx) {
   const TrackerSettings s = trackerSettingsFromConfig(ctx.config, ctx.args);
+  const double idle_exit_s = numberIn(ctx.args, "idle-exit", 0.0, std::numeric_limits<double>::infinity());
   finishConfig(ctx);
   const TrackerChannels channels{s.frames_channel, s.pose_channel, s.keyframe_channel,
                                  s.keyframe_poses_channel, s.detections_channel};
@@ -19,7 +23,7 @@ int run(ProcessContext& ctx) {
                                ctx.args.value("frame-log")};
   TrackerNode node(ctx, s.tracker, channels, s.frame_queue_capacity, outputs, s.detections);
   ctx.status.tick(true);
-  node.run(ctx.args.number("idle-exit"));
+  node.run(idle_exit_s);
   // Reached on every exit but a kill (the loop only ends by a stop request or idle-exit); after a kill the
   // files hold the live poses, written one by one.
   node.writeTrajectories();

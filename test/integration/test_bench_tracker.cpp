@@ -248,15 +248,18 @@ TEST(BenchTrackerDrops, AProbabilityOutOfRangeIsAnErrorNamingTheOption) {
 }
 
 // A negative count is a usage error naming the option (exit 2), checked before any frame is read:
-// --frames -3 once tracked every frame.
+// --frames -3 once tracked every frame, and --frames 0 read the whole folder to print "nan".
 TEST(BenchTrackerOptions, NegativeCountsAreUsageErrorsNamingTheOption) {
-  for (const char* option : {"--frames", "--start", "--frame-gap-ms"}) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--frames", "-3"}, {"--frames", "0"}, {"--start", "-3"}, {"--frame-gap-ms", "-3"}};
+  for (const auto& [option, value] : cases) {
     const Outcome o = runCommand(
-        "negative", {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), option, "-3"}, kTimeoutS);
+        "negative", {binPath("bmp-bench-tracker"), "--dataset", test::bonnDir(), option, value}, kTimeoutS);
     EXPECT_EQ(o.status, 2) << option << ": " << o.output;
-    EXPECT_NE(o.output.find(std::string(option) + " must be an integer from 0 to "), std::string::npos)
-        << o.output;
-    EXPECT_NE(o.output.find("got '-3'"), std::string::npos) << o.output;
+    const std::string range =
+        option == "--frames" ? " must be an integer from 1 to " : " must be an integer from 0 to ";
+    EXPECT_NE(o.output.find(option + range), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("got '" + value + "'"), std::string::npos) << o.output;
     EXPECT_EQ(o.output.find("skipped"), std::string::npos) << o.output;  // refused before the folder is read
   }
 }

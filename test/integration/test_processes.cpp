@@ -81,6 +81,16 @@ TEST(Processes, MissingDatasetAndBadOptionsAreClearErrors) {
                                                         "--ack-channels", "", "--lcm-url", "memq://"});
   EXPECT_EQ(no_ack.status, 2);
   EXPECT_NE(no_ack.output.find("needs at least one answer channel"), std::string::npos) << no_ack.output;
+  // A count below its range once meant something quietly: --idle-exit -1 never exited, --bench -2 printed
+  // nan.
+  const Outcome idle =
+      runCommand("idle_exit", {binPath("bmp-tracker"), "--idle-exit", "-1", "--lcm-url", "memq://"});
+  EXPECT_EQ(idle.status, 2) << idle.output;
+  EXPECT_NE(idle.output.find("--idle-exit must be a number of at least 0, got '-1'"), std::string::npos)
+      << idle.output;
+  const Outcome bench = runCommand("synth_bench", {binPath("bmp-synth"), "--bench", "-2"});
+  EXPECT_EQ(bench.status, 2) << bench.output;
+  EXPECT_NE(bench.output.find("--bench must be an integer from 1 to"), std::string::npos) << bench.output;
 }
 
 // A killed consumer must not take the data with it: capture in realtime mode finishes on its own.

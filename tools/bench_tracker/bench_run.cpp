@@ -49,9 +49,10 @@ TrackerConfig loadConfig(const bmp::ArgParser& args) {
 
 constexpr long long kMaxIntOption = std::numeric_limits<int>::max();
 
-// --frames N, or -1: every frame (a negative N is refused, not taken as "every frame").
+// --frames N, or -1: every frame (a negative N is refused, not taken as "every frame"; 0 frames would time
+// nothing and print "nan").
 int maxFrames(const bmp::ArgParser& args) {
-  return args.given("frames") ? static_cast<int>(bmp::integerIn(args, "frames", 0, kMaxIntOption)) : -1;
+  return args.given("frames") ? static_cast<int>(bmp::integerIn(args, "frames", 1, kMaxIntOption)) : -1;
 }
 
 // --start N: frames skipped from the start of the folder.

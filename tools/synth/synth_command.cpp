@@ -75,11 +75,13 @@ void addSynthOptions(ArgParser& args) {
 int runSynth(const ArgParser& args) {
   const capture::SyntheticSceneConfig config = sceneConfig(args);
   const std::string out = args.value("out");
-  // Before the scene is built (seconds with people): a refused folder is said at once.
+  // Before the scene is built (seconds with people): a refused folder or count is said at once.
+  const int bench_frames =
+      args.given("bench") ? static_cast<int>(integerIn(args, "bench", 1, kMaxFrames)) : 0;
   if (!args.given("bench")) capture::prepareTumFolder(out, args.flag("overwrite"));
   Stopwatch setup;
   const capture::SyntheticScene scene(config);
-  if (args.given("bench")) return benchmark(scene, static_cast<int>(args.integer("bench")));
+  if (args.given("bench")) return benchmark(scene, bench_frames);
   log::info("scene ready in ", static_cast<int>(setup.elapsedMs()), " ms: ", config.num_frames,
             " frames, seed ", config.seed, ", ", config.num_moving_objects, " moving objects -> ", out);
   Stopwatch total;
