@@ -122,6 +122,11 @@ TEST(MapServerReader, ReadsTheMappersGridBack) {
   EXPECT_NEAR(read.origin.y(), 2.5, 1e-9);
   EXPECT_EQ(read.cells, grid.cells);
   EXPECT_THROW(readMapServerMap((dir / "missing.yaml").string()), MapFileError);
+  // A point far beyond the grid (or a tiny resolution) is outside it: its cell was cast from a double
+  // beyond int's range (undefined; INT_MIN here).
+  EXPECT_FALSE(read.inside(read.cellOf({1e300, 0}).x(), read.cellOf({1e300, 0}).y()));
+  EXPECT_EQ(read.cellOf({1e300, -1e300}), Eigen::Vector2i(4, -1));
+  EXPECT_EQ(read.cellOf({-0.99, 2.51}), Eigen::Vector2i(0, 0));
   // The plane's axes are keys, for programs that turn world poses into cells.
   grid.frame = mapper::PlaneFrame::fromUp({0.0, -0.970, -0.243});
   const Config yaml = Config::fromString(mapper::encodeMapYaml(grid, "g.pgm"), "g.yaml");
@@ -216,6 +221,21 @@ TEST_F(PlanTool, AMissingMapAndAnUnwrittenOutputHaveTheirOwnStatus) {
   const std::string missing = (dir / "missing.yaml").string();
   EXPECT_EQ(run({"--map", missing, "--from", "0,0.8", "--to", "0.6,2.2"}, out), 3) << out;
   EXPECT_NE(out.find(missing + ": no such file"), std::string::npos) << out;
+  // A broken map file is no grid too (status 3, named), not yaml-cpp's words with the status for "no path".
+  const std::pair<std::string, std::string> broken[] = {
+      {"just a line of text\n", "not a map description"},
+      {"image: g.pgm\nresolution: abc\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: "
+       "0.2\n",
+       "key 'resolution' must be a number"},
+      {"image: g.pgm\nresolution: 0.05\norigin: [0, x, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: "
+       "0.2\n",
+       "key 'origin' must be a number"}};
+  for (const auto& [text, message] : broken) {
+    const std::string path = (dir / "broken.yaml").string();
+    writeFileAtomically(path, text);
+    EXPECT_EQ(run({"--map", path, "--from", "0,0.8", "--to", "0.6,2.2"}, out), 3) << out;
+    EXPECT_NE(out.find(path + ": " + message), std::string::npos) << out;
+  }
   // A name no file can take is a bad argument, found before planning.
   const std::string too_long = (dir / (std::string(300, 'p') + ".txt")).string();
   const std::string map = (dir / "occupancy.yaml").string();

@@ -1,7 +1,10 @@
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <type_traits>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -11,7 +14,12 @@ namespace bmp::plan {
 
 Eigen::Vector2i PlanGrid::cellOf(const Eigen::Vector2d& p) const {
   const Eigen::Vector2d rel = (p - origin) / resolution;
-  return {static_cast<int>(std::floor(rel.x())), static_cast<int>(std::floor(rel.y()))};
+  // Clamped to one cell beyond the grid before the cast: a point far off (or a tiny resolution) stays
+  // outside it, where casting its double to int would be undefined.
+  const auto cell = [](double r, int size) {
+    return static_cast<int>(std::clamp(std::floor(r), -1.0, static_cast<double>(size)));
+  };
+  return {cell(rel.x(), width), cell(rel.y(), height)};
 }
 
 Eigen::Vector2d PlanGrid::centreOf(int col, int row) const {
@@ -29,23 +37,38 @@ PlanGrid readMapServerMap(const std::string& yaml_path) {
   } catch (const YAML::Exception& e) {
     throw MapFileError(yaml_path + ": " + e.what());
   }
+  if (!doc.IsMap())
+    throw MapFileError(yaml_path +
+                       ": not a map description (a YAML mapping of image, resolution, origin, ...)");
   const auto need = [&](const char* key) {
     if (!doc[key]) throw MapFileError(yaml_path + ": key '" + key + "' missing");
     return doc[key];
   };
+  // A value of the wrong kind ("resolution: abc") named by its key, not in yaml-cpp's words.
+  const auto as = [&](const YAML::Node& node, const std::string& key, auto kind) {
+    try {
+      return node.as<decltype(kind)>();
+    } catch (const YAML::Exception&) {
+      throw MapFileError(yaml_path + ": key '" + key + "' must be " +
+                         (std::is_same_v<decltype(kind), std::string> ? "text" : "a number"));
+    }
+  };
   PlanGrid grid;
-  std::filesystem::path image_path = need("image").as<std::string>();
+  std::filesystem::path image_path = as(need("image"), "image", std::string());
   if (image_path.is_relative()) image_path = std::filesystem::path(yaml_path).parent_path() / image_path;
-  grid.resolution = need("resolution").as<double>();
+  grid.resolution = as(need("resolution"), "resolution", 0.0);
   const YAML::Node origin = need("origin");
   if (!origin.IsSequence() || origin.size() < 2)
     throw MapFileError(yaml_path + ": origin must be [x, y, yaw]");
-  if (origin.size() > 2 && std::abs(origin[2].as<double>()) > 1e-9)
+  if (origin.size() > 2 && std::abs(as(origin[2], "origin", 0.0)) > 1e-9)
     throw MapFileError(yaml_path + ": a rotated origin (yaw != 0) is not supported");
-  grid.origin = {origin[0].as<double>(), origin[1].as<double>()};
-  const bool negate = need("negate").as<int>() != 0;
-  const double occupied = need("occupied_thresh").as<double>(), free = need("free_thresh").as<double>();
-  if (!(grid.resolution > 0)) throw MapFileError(yaml_path + ": resolution must be positive");
+  grid.origin = {as(origin[0], "origin", 0.0), as(origin[1], "origin", 0.0)};
+  const bool negate = as(need("negate"), "negate", 0) != 0;
+  const double occupied = as(need("occupied_thresh"), "occupied_thresh", 0.0);
+  const double free = as(need("free_thresh"), "free_thresh", 0.0);
+  if (!(grid.resolution > 0) || !std::isfinite(grid.resolution))
+    throw MapFileError(yaml_path + ": resolution must be positive");
+  if (!grid.origin.allFinite()) throw MapFileError(yaml_path + ": origin must be finite");
 
   const cv::Mat image = cv::imread(image_path.string(), cv::IMREAD_GRAYSCALE);
   if (image.empty()) throw MapFileError(image_path.string() + ": cannot read the map image");
