@@ -90,6 +90,7 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
     const std::string problem = pose_problem.empty() ? checkPlace(u.T_world_cam) : pose_problem;
     if (it == keyframes_.end() && merged_.count(u.id) != 0 && problem.empty()) {
       ++result.applied;
+      result.applied_ids.push_back(u.id);
       continue;
     }
     const std::string why = it == keyframes_.end() ? "unknown keyframe" : problem;
@@ -101,6 +102,7 @@ PoseUpdateResult Mapper::updatePoses(const std::vector<PoseUpdate>& updates) {
     cloud_stale_ = output_stale_ = true;
     octree_stale_ = octree_stale_ || movedBeyondThresholds(it->second);
     ++result.applied;
+    result.applied_ids.push_back(u.id);
   }
   return result;
 }

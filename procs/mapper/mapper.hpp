@@ -35,6 +35,7 @@ struct PoseUpdate {
 
 struct PoseUpdateResult {
   int applied = 0;
+  std::vector<int64_t> applied_ids;   // the keyframes (or merged revisits) whose update was applied
   std::vector<std::string> rejected;  // one line per refused update, naming the keyframe id and the reason
 };
 

@@ -99,6 +99,7 @@ void MapperNode::onKeyframe(const keyframe_t& msg) {
   if (why.empty() && fit != CameraPin::Fit::kSame) startMapWithCamera(msg);
   if (why.empty()) why = mapper_->integrate(kf).reason;
   if (!why.empty()) return refuse("keyframe " + std::to_string(msg.id) + ": " + why + "; skipped");
+  pose_order_.keyframeMapped(msg.utime);
   camera_.used();
   ctx_.status.processed();
   grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
@@ -111,8 +112,9 @@ void MapperNode::onPoses(const keyframe_poses_t& msg) {
   const std::vector<PoseUpdate> updates =
       pose_order_.notOlder(poseUpdatesFromMessage(msg, rejected), msg.utime, rejected);
   const PoseUpdateResult r = mapper_->updatePoses(updates);
-  for (const PoseUpdate& u : updates)
-    if (mapper_->hasKeyframe(u.id)) pose_order_.taken(u.id, msg.utime);  // bounded by the map's keyframes
+  // Only what was applied: a refused update's stamp would make a later real one look older. Bounded by the
+  // map's keyframes and merged revisits.
+  for (const int64_t id : r.applied_ids) pose_order_.taken(id, msg.utime);
   rejected.insert(rejected.end(), r.rejected.begin(), r.rejected.end());
   for (const auto& line : rejected) refuse("pose update for " + line + "; skipped");
   if (r.applied > 0) {
