@@ -82,6 +82,24 @@ void collectUnused(const YAML::Node& node, const std::string& prefix, const std:
   }
 }
 
+// A key written twice in one mapping: yaml-cpp keeps both and reads the first, so the value a user edited
+// last (lower down) would be ignored without a word.
+void refuseRepeatedKeys(const YAML::Node& node, const std::string& prefix, const std::string& origin) {
+  if (node.IsSequence()) {
+    for (const auto& item : node) refuseRepeatedKeys(item, prefix, origin);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string path = prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar();
+    if (!seen.insert(kv.first.Scalar()).second)
+      throw ConfigError(origin + ":" + std::to_string(kv.first.Mark().line + 1) + ": key '" + path +
+                        "' is given twice (the first would be used and this one ignored)");
+    refuseRepeatedKeys(kv.second, path, origin);
+  }
+}
+
 }  // namespace
 
 Config::Config(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, std::string prefix)
@@ -105,6 +123,7 @@ Config Config::fromString(const std::string& yaml, const std::string& origin) {
   }
   if (state->root.IsNull()) state->root = YAML::Node(YAML::NodeType::Map);
   if (!state->root.IsMap()) throw ConfigError(origin + ": the top level must be a mapping of keys");
+  refuseRepeatedKeys(state->root, "", origin);
   auto node = std::make_shared<YAML::Node>(state->root);
   return Config(state, node, "");
 }
