@@ -3,8 +3,24 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <string>
 
 namespace bmp::log {
+
+std::string printable(const std::string& message) {
+  std::string out;
+  out.reserve(message.size());
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n')
+      out += "\n    ";
+    else if ((byte < 0x20 && c != '\t') || byte == 0x7f)
+      out += '?';
+    else
+      out += c;
+  }
+  return out;
+}
 
 void write(Level level, const std::string& message) {
   static constexpr const char* kTags[] = {"D", "I", "W", "E"};
@@ -18,7 +34,7 @@ void write(Level level, const std::string& message) {
   std::strftime(stamp, sizeof(stamp), "%H:%M:%S", &utc);
   // One fprintf per line keeps lines from concurrent threads whole.
   std::fprintf(stderr, "[%s.%03d] [%s] %s\n", stamp, static_cast<int>(millis), kTags[static_cast<int>(level)],
-               message.c_str());
+               printable(message).c_str());
 }
 
 }  // namespace bmp::log

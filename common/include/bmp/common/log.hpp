@@ -8,7 +8,13 @@ namespace bmp::log {
 
 enum class Level { kDebug, kInfo, kWarn, kError };
 
+// Writes one line (printable(message)) to stderr.
 void write(Level level, const std::string& message);
+
+// What goes into a log line is often another program's text (a label, a reason, a source name off LCM):
+// control characters become '?' so none can rewrite the terminal, and a line break is indented so no text
+// can pass for a line of our own ("[time] [E] ...").
+std::string printable(const std::string& message);
 
 template <typename... Args>
 std::string concat(const Args&... args) {
