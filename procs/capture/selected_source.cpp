@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace bmp::capture {
 
@@ -9,6 +10,9 @@ SelectedSource::SelectedSource(std::unique_ptr<FrameSource> inner, FrameSelectio
     : inner_(std::move(inner)), selection_(selection) {
   if (selection_.every < 1) throw std::invalid_argument("frame selection: every must be >= 1");
   if (selection_.start < 0) throw std::invalid_argument("frame selection: start must be >= 0");
+  if (inner_->size() >= 0 && selection_.start >= inner_->size())
+    throw std::invalid_argument("--start " + std::to_string(selection_.start) + " is past the end of " +
+                                inner_->name() + " (" + std::to_string(inner_->size()) + " frames)");
 }
 
 int64_t SelectedSource::size() const {

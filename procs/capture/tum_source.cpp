@@ -10,6 +10,11 @@ TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSou
     : index_(std::move(index)), camera_(camera), options_(std::move(options)) {
   if (options_.selection.every < 1) throw std::invalid_argument("frame selection: every must be >= 1");
   if (options_.selection.start < 0) throw std::invalid_argument("frame selection: start must be >= 0");
+  // Nothing would play, and "0 frames" would end the run without a reason.
+  if (options_.selection.start >= static_cast<int64_t>(index_.frames.size()))
+    throw std::invalid_argument("--start " + std::to_string(options_.selection.start) +
+                                " is past the end of " + index_.name + " (" +
+                                std::to_string(index_.frames.size()) + " associated frames)");
   cursor_ = options_.selection.start;
   for (const auto& file : index_.missing_files)
     if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + ": listed but does not exist");

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bmp/common/child_process.hpp"
@@ -91,6 +92,49 @@ TEST(Processes, MissingDatasetAndBadOptionsAreClearErrors) {
   const Outcome bench = runCommand("synth_bench", {binPath("bmp-synth"), "--bench", "-2"});
   EXPECT_EQ(bench.status, 2) << bench.output;
   EXPECT_NE(bench.output.find("--bench must be an integer from 1 to"), std::string::npos) << bench.output;
+}
+
+// A selection past the end played or wrote nothing and ended with exit 1 and no reason; tum2lcm also emptied
+// the log already at --out. Each now says why, and tum2lcm writes beside --out, renaming only a whole log.
+TEST(Processes, NothingToPlayOrWriteIsSaidAndLeavesAnEarlierLogAsItWas) {
+  const fs::path dir = test::scratchDir("nothing_to_play");
+  const std::string log = (dir / "frames.lcmlog").string();
+  std::ofstream(log) << "an earlier log";
+  const Outcome past = runCommand("tum2lcm_past_end", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
+                                                       "--out", log, "--start", "5000"});
+  EXPECT_NE(past.status, 0) << past.output;
+  EXPECT_NE(past.output.find("--start 5000 is past the end of"), std::string::npos) << past.output;
+  EXPECT_EQ(test::readText(log), "an earlier log");
+  EXPECT_FALSE(fs::exists(log + ".partial"));
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--channel", ""}, {"--max-diff", "-1"}, {"--every", "0"}}) {
+    const Outcome bad = runCommand("tum2lcm_bad_option", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
+                                                          "--out", log, option, value});
+    EXPECT_EQ(bad.status, 2) << option << ": " << bad.output;
+    EXPECT_NE(bad.output.find(option), std::string::npos) << bad.output;
+    EXPECT_EQ(test::readText(log), "an earlier log") << option;
+  }
+  const Outcome capture = runCommand(
+      "capture_past_end",
+      {binPath("bmp-capture"), "--dataset", test::bonnDir(), "--start", "5000", "--lcm-url", "memq://"});
+  EXPECT_EQ(capture.status, 1) << capture.output;
+  EXPECT_NE(capture.output.find("--start 5000 is past the end of"), std::string::npos) << capture.output;
+  // A camera of another size: every frame is skipped, but only the first few are named one by one (the end's
+  // count has them all), not a warning per frame.
+  std::ofstream(dir / "small.yaml") << "camera: {width: 320, height: 240, fx: 271.4, fy: 271.3, cx: 157.8, "
+                                       "cy: 118.9, distortion: [0, 0, 0, 0, 0], depth_scale: 5000}\n";
+  const Outcome small =
+      runCommand("capture_wrong_size",
+                 {binPath("bmp-capture"), "--dataset", test::bonnDir(), "--camera",
+                  (dir / "small.yaml").string(), "--end", "40", "--mode", "fast", "--lcm-url", "memq://"});
+  EXPECT_EQ(small.status, 1) << small.output;
+  std::size_t named = 0;
+  for (std::size_t at = small.output.find("the camera is 320x240"); at != std::string::npos;
+       at = small.output.find("the camera is 320x240", at + 1))
+    ++named;
+  EXPECT_GE(named, 1u) << small.output;
+  EXPECT_LE(named, 6u) << small.output;
+  EXPECT_NE(small.output.find("published 0 frames"), std::string::npos) << small.output;
 }
 
 // A killed consumer must not take the data with it: capture in realtime mode finishes on its own.

@@ -83,7 +83,7 @@ int runSynth(const ArgParser& args) {
   const capture::SyntheticScene scene(config);
   if (args.given("bench")) return benchmark(scene, bench_frames);
   log::info("scene ready in ", static_cast<int>(setup.elapsedMs()), " ms: ", config.num_frames,
-            " frames, seed ", config.seed, ", ", config.num_moving_objects, " moving objects -> ", out);
+            " frames, seed ", config.seed, ", ", scene.movingObjects(0).size(), " moving objects -> ", out);
   Stopwatch total;
   capture::writeTumFolder(scene, out, [&](int done, int count) {
     if (done % 30 == 0 || done == count)

@@ -1,11 +1,15 @@
 #include "tum_to_lcm_log.hpp"
 
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bmp/common/arg_range.hpp"
 #include "bmp/common/camera_config.hpp"
 #include "bmp/common/config_dir.hpp"
 #include "bmp/common/log.hpp"
@@ -16,6 +20,8 @@
 namespace bmp::capture {
 
 namespace {
+
+constexpr long long kMaxFrameNumber = 100000000;
 
 void writeEvent(lcm::LogFile& log_file, const std::string& path, const std::string& channel, int64_t seq,
                 const rgbd_frame_t& msg, std::vector<uint8_t>& buffer) {
@@ -36,28 +42,49 @@ int convertTumToLcmLog(const ArgParser& args) {
   const std::string dir = args.value("dataset");
   const std::string out_path = args.value("out");
   if (dir.empty() || out_path.empty()) throw ArgError("tum2lcm: --dataset and --out are required");
-  const CameraIntrinsics camera =
-      selectCamera(dir, args.value("camera"), configDir() + "/cameras").intrinsics;
-
+  const std::string channel = args.value("channel");
+  if (channel.empty()) throw ArgError("tum2lcm: --channel must name a channel");
   TumSourceOptions options;
-  options.selection = {args.integer("start"), args.integer("end"), args.integer("every")};
+  options.selection = {integerIn(args, "start", 0, kMaxFrameNumber),
+                       integerIn(args, "end", -1, kMaxFrameNumber),
+                       integerIn(args, "every", 1, kMaxFrameNumber)};
+  if (options.selection.end >= 0 && options.selection.end <= options.selection.start)
+    throw ArgError("tum2lcm: --end must be past --start (it is one past the last frame written)");
   options.verify = parseVerifyMode(args.value("verify"));
   options.warn = [](const std::string& m) { log::warn(m); };
-  TumSource source(indexSequence(dir, args.number("max-diff")), camera, options);
+  const double max_diff = positiveNumber(args, "max-diff");
+  // The folder first: a missing or empty one is said as such, not as an unknown camera.
+  SequenceIndex index = indexSequence(dir, max_diff);
+  const CameraIntrinsics camera =
+      selectCamera(dir, args.value("camera"), configDir() + "/cameras").intrinsics;
+  TumSource source(std::move(index), camera, options);
 
-  lcm::LogFile log_file(out_path, "w");
-  if (!log_file.good()) throw std::runtime_error(out_path + ": cannot open for writing");
-  const std::string channel = args.value("channel");
+  // Written beside --out and renamed when whole: a run that fails leaves a log already there as it was.
+  const std::string partial = out_path + ".partial";
   std::vector<uint8_t> buffer;
   int64_t seq = 0;
-  while (auto frame = source.next()) {
-    const rgbd_frame_t msg = toFrameMessage(std::move(*frame), seq, camera, source.name());
-    writeEvent(log_file, out_path, channel, seq, msg, buffer);
-    ++seq;
-    if (seq % 100 == 0) log::info("written ", seq, "/", source.size(), " frames");
+  try {
+    lcm::LogFile log_file(partial, "w");
+    if (!log_file.good()) throw std::runtime_error(partial + ": cannot open for writing");
+    while (auto frame = source.next()) {
+      const rgbd_frame_t msg = toFrameMessage(std::move(*frame), seq, camera, source.name());
+      writeEvent(log_file, partial, channel, seq, msg, buffer);
+      ++seq;
+      if (seq % 100 == 0) log::info("written ", seq, "/", source.size(), " frames");
+    }
+  } catch (...) {
+    std::remove(partial.c_str());
+    throw;
   }
+  if (seq == 0) {
+    std::remove(partial.c_str());
+    throw std::runtime_error(dir + ": no frame could be read (each skip is named above); " + out_path +
+                             " not written");
+  }
+  if (std::rename(partial.c_str(), out_path.c_str()) != 0)
+    throw std::runtime_error(out_path + ": cannot be written: " + std::strerror(errno));
   log::info("wrote ", seq, " frames to ", out_path, " (skipped ", source.skips().total(), ")");
-  return seq > 0 ? 0 : 1;
+  return 0;
 }
 
 }  // namespace bmp::capture

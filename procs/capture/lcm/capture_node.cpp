@@ -14,10 +14,6 @@ namespace bmp::capture {
 
 namespace {
 
-void warnLine(const std::string& m) {
-  log::warn(m);
-}
-
 // The period of one pass over a TUM folder's selected frames, known before any is read, so the looped
 // ground truth can be written before the first frame.
 double tumPeriod(const SequenceIndex& index, const FrameSelection& selection) {
@@ -42,7 +38,9 @@ Trajectory loopedTruth(const Trajectory& truth, int loops, double period_s) {
 }  // namespace
 
 CaptureNode::CaptureNode(ProcessContext& ctx, CaptureSettings settings)
-    : ctx_(ctx), settings_(std::move(settings)), source_(openFrameSource(settings_, warnLine)) {
+    : ctx_(ctx),
+      settings_(std::move(settings)),
+      source_(openFrameSource(settings_, [this](const std::string& m) { warnSkip(m); })) {
   if (const auto* tum = dynamic_cast<const TumSource*>(source_.get())) {
     from_dataset_ = true;
     dataset_truth_ = tum->index().groundtruth;
@@ -50,11 +48,17 @@ CaptureNode::CaptureNode(ProcessContext& ctx, CaptureSettings settings)
   }
   if (settings_.loops > 1) {
     source_ = std::make_unique<LoopedSource>(
-        std::move(source_), [this] { return openFrameSource(settings_, warnLine); }, settings_.loops,
-        loop_period_s_);
+        std::move(source_),
+        [this] { return openFrameSource(settings_, [this](const std::string& m) { warnSkip(m); }); },
+        settings_.loops, loop_period_s_);
     log::info("playing the source ", settings_.loops, " times as one stream",
               loop_period_s_ > 0 ? ", stamps offset " + std::to_string(loop_period_s_) + " s per pass" : "");
   }
+}
+
+void CaptureNode::warnSkip(const std::string& message) {
+  if (const auto left_out = skip_warnings_.admit("skipped frames"))
+    log::warn(message, leftOutNote(*left_out));
 }
 
 int CaptureNode::run() {

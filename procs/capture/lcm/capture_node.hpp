@@ -4,8 +4,10 @@
 // frame, a synthetic scene's pose by pose as it plays, so a capture that dies mid-run still leaves the
 // ground truth of every frame it published. The process's main only reads the settings and runs it.
 #include <memory>
+#include <string>
 
 #include "bmp/common/tum_trajectory.hpp"
+#include "bmp/common/warning_throttle.hpp"
 
 #include "bmp/lcm/process.hpp"
 #include "capture/capture_settings.hpp"
@@ -24,8 +26,13 @@ class CaptureNode {
   int run();
 
  private:
+  // One line per skipped frame, the first few of a kind, then a summary every few seconds: a folder whose
+  // every image has the wrong size must not bury the log. The end's count has them all.
+  void warnSkip(const std::string& message);
+
   ProcessContext& ctx_;
   CaptureSettings settings_;
+  WarningThrottle skip_warnings_;  // before source_: opening it may warn already
   std::unique_ptr<FrameSource> source_;
   bool from_dataset_ = false;
   Trajectory dataset_truth_;  // a TUM folder's ground truth, all of it
