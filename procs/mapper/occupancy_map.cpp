@@ -123,12 +123,16 @@ OccupancyGrid2D OccupancyMap::project(const GridSettings& s,
   grid.resolution = s.resolution_m;
   grid.frame = PlaneFrame::fromUp(s.up, s.axes_from);
   std::vector<BandLeaf> leaves = bandLeaves(*tree_, s, grid.frame);
-  if (leaves.empty()) return grid;
   // A camera's floor disc as a free leaf, rasterised after the octree's: it fills only unknown cells.
   const std::size_t octree_leaves = leaves.size();
   if (s.camera_free_radius_m > 0)
     for (const auto& c : camera_centres)
       leaves.push_back({grid.frame.planar(c), s.camera_free_radius_m, false});
+  if (leaves.empty()) {  // nothing in the band yet: one unknown cell, still an image map_server can load
+    grid.width = grid.height = 1;
+    grid.cells.assign(1, kCellUnknown);
+    return grid;
+  }
   Eigen::Vector2d lo = leaves[0].centre, hi = lo;
   for (const auto& l : leaves) {
     const Eigen::Vector2d half = Eigen::Vector2d::Constant(l.half_extent);

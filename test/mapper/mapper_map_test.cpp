@@ -197,7 +197,15 @@ TEST(OccupancyGrid, WallInTheBandIsOccupiedTheFloorBeforeItFree) {
   GridSettings above = mapper.settings().grid;
   above.height_min_m = 2.0;
   above.height_max_m = 3.0;
-  EXPECT_TRUE(mapper.occupancy().project(above).cells.empty());
+  // One unknown cell: a 0x0 image (as written before) is no map map_server or bmp-plan can load.
+  const OccupancyGrid2D nothing = mapper.occupancy().project(above);
+  EXPECT_EQ(nothing.width, 1);
+  EXPECT_EQ(nothing.height, 1);
+  EXPECT_EQ(nothing.cells, std::vector<int8_t>{kCellUnknown});
+  // With nothing in the band, the floor where the camera stood is still free.
+  above.camera_free_radius_m = 0.3;
+  const OccupancyGrid2D discs = mapper.occupancy().project(above, {Eigen::Vector3d::Zero()});
+  EXPECT_EQ(gridAt(discs, Eigen::Vector3d::Zero()), kCellFree);
 }
 
 // The column under a camera is never seen, so a planner refused to start where the robot stands. The floor
