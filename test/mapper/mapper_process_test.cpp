@@ -9,6 +9,9 @@
 #include <functional>
 #include <sstream>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
 #include <bmp/keyframe_poses_t.hpp>
 #include <bmp/occupancy_grid_t.hpp>
 #include <bmp/process_status_t.hpp>
@@ -192,6 +195,52 @@ TEST(MapperProcess, FailedSaveAtExitIsANonZeroExit) {
   std::ofstream(m.mapDir()) << "not a folder";
   EXPECT_EQ(m.child().stop(20.0), 1) << m.log();
   EXPECT_NE(m.log().find("map not saved (exit)"), std::string::npos) << m.log();
+}
+
+// The tracker restarted mid-run: its new map's keyframes start again at id 0, at the origin of a new world
+// frame. They were refused as already mapped up to the old map's last id and merged into it after that,
+// in the wrong frame. The map so far is saved in its own folder and the new one starts from keyframe 0.
+TEST(MapperProcess, ATrackerThatBeganANewMapGetsANewMapAndTheOldOneIsKept) {
+  MapperUnderTest m;
+  ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
+  for (int id = 0; id < 3; ++id)
+    m.publish("SLAM_KEYFRAME",
+              test::keyframeMessage(test::wallKeyframe(id, test::translation(0.2 * id, 0, 0), 3.02)));
+  ASSERT_TRUE(
+      m.pumpUntil([&] { return m.status && m.status->message.find("keyframes 3") != std::string::npos; }, 20))
+      << m.log();
+  // The restarted tracker's world: the wall 2 m ahead of its origin. A keyframe 0 that is not at the origin
+  // is no tracker's first, and is refused as mapped already.
+  m.publish("SLAM_KEYFRAME", test::keyframeMessage(test::wallKeyframe(0, test::translation(0.1, 0, 0), 2.0)));
+  for (int id = 0; id < 2; ++id)
+    m.publish("SLAM_KEYFRAME",
+              test::keyframeMessage(test::wallKeyframe(id, test::translation(0.2 * id, 0, 0), 2.0)));
+  ASSERT_TRUE(m.pumpUntil(
+      [&] {
+        return m.status && m.status->processed >= 5 &&
+               m.status->message.find("keyframes 2") != std::string::npos;
+      },
+      20))
+      << m.log();
+  EXPECT_EQ(m.status->malformed, 1);
+  EXPECT_EQ(m.child().stop(20.0), 0) << m.log();
+  const std::string log = m.log();
+  const fs::path earlier = m.mapDir() / "tracker_map_1";
+  EXPECT_NE(log.find("the tracker began a new map (restarted); the map so far (3 keyframes) is saved in " +
+                     earlier.string()),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("keyframe 0: a keyframe with this id was already mapped"), std::string::npos) << log;
+  // Both maps on disk: the earlier one's wall at 3.02 m, the new one's at 2 m (the camera looks along z).
+  const auto wallDepth = [](const fs::path& pcd) {
+    pcl::PointCloud<pcl::PointXYZRGB> cloud;
+    if (pcl::io::loadPCDFile(pcd.string(), cloud) != 0 || cloud.empty()) return -1.0;
+    double sum = 0;
+    for (const auto& p : cloud) sum += p.z;
+    return sum / static_cast<double>(cloud.size());
+  };
+  EXPECT_NEAR(wallDepth(earlier / "map.pcd"), 3.02, 0.05);
+  EXPECT_NEAR(wallDepth(m.mapDir() / "map.pcd"), 2.0, 0.05);
 }
 
 // Restarted on a folder that holds a map and stopped before any keyframe came (the tracker down, or every

@@ -8,6 +8,7 @@
 #include "bmp/common/atomic_file.hpp"
 #include "bmp/common/log.hpp"
 #include "bmp/common/memory_usage.hpp"
+#include "bmp/lcm/conversions.hpp"
 #include "mapper/lcm/mapper_messages.hpp"
 #include "mapper/map_files.hpp"
 
@@ -87,6 +88,31 @@ void MapperNode::startMapWithCamera(const keyframe_t& msg) {
   camera_.pin(msg.camera, msg.depth_scale);
 }
 
+bool MapperNode::startsNewTrackerMap(const keyframe_t& msg) const {
+  // The tracker's first keyframe is its world's origin by definition: exactly the identity.
+  const SE3 pose = fromMsg(msg.T_world_cam);
+  return msg.id == 0 && mapper_->keyframeCount() > 0 && pose.translation().isZero(0.0) &&
+         pose.linear().isIdentity(1e-12);
+}
+
+void MapperNode::setAsideForNewTrackerMap() {
+  const std::string dir =
+      (std::filesystem::path(out_dir_) / ("tracker_map_" + std::to_string(++maps_set_aside_))).string();
+  log::warn("keyframe 0 again, at the origin: the tracker began a new map (restarted); the map so far (",
+            mapper_->keyframeCount(), " keyframes) is saved in ", dir, " and a new one starts");
+  try {
+    const auto written = writeMapFiles(dir, *mapper_);
+    log::info("map saved (the tracker's earlier map): ", written.size(), " files in ", dir);
+  } catch (const FileWriteError& e) {
+    log::error("the tracker's earlier map not saved: ", e.what());
+  }
+  const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
+  mapper_.emplace(settings);
+  pose_order_.clear();
+  floor_reported_ = false;
+  grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
+}
+
 void MapperNode::onKeyframe(const keyframe_t& msg) {
   ctx_.status.received();
   status_dirty_ = true;
@@ -94,6 +120,7 @@ void MapperNode::onKeyframe(const keyframe_t& msg) {
   KeyframeInput kf;
   std::string why = fit == CameraPin::Fit::kRefused ? camera_.refusal(msg.camera, msg.depth_scale)
                                                     : keyframeFromMessage(msg, kf);
+  if (why.empty() && fit == CameraPin::Fit::kSame && startsNewTrackerMap(msg)) setAsideForNewTrackerMap();
   // A keyframe the new map would refuse must not drop the map it would replace.
   if (why.empty() && fit != CameraPin::Fit::kSame) why = mapper_->refusalOfFirst(kf);
   if (why.empty() && fit != CameraPin::Fit::kSame) startMapWithCamera(msg);

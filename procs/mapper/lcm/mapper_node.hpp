@@ -39,6 +39,11 @@ class MapperNode {
   // The keyframe's camera becomes the map's: the first, or one replacing an unsettled camera (the map
   // made with that one is dropped). Another camera after it settled is refused before decoding.
   void startMapWithCamera(const keyframe_t& msg);
+  // Keyframe 0 again, at the origin, with the map's camera: the tracker began a new map (it was restarted),
+  // whose world frame is not this map's. The map so far is saved into its own folder and a new one starts;
+  // merged, the new map's keyframes would land in the old one's frame.
+  bool startsNewTrackerMap(const keyframe_t& msg) const;
+  void setAsideForNewTrackerMap();
   void publishDue(double now_s);
   // The loop's work besides messages: octree upkeep, publishing, saving.
   void maintainAndPublish(double now_s);
@@ -60,6 +65,7 @@ class MapperNode {
   WarningThrottle warnings_;  // a flood of bad input (16k pose updates in one message) cannot flood the log
   bool floor_reported_ = false;
   std::optional<std::size_t> saved_points_;  // points in the files of the last save
+  int maps_set_aside_ = 0;                   // earlier tracker maps saved into out/tracker_map_<n>/
 };
 
 }  // namespace bmp::mapper
