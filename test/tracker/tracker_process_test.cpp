@@ -343,6 +343,7 @@ TEST(TrackerProcess, ACameraReplacedInAFrameDroppedFromTheQueueStillStartsANewMa
   forged.camera.height = 6000;
   forged.camera.cx = 4000;
   forged.camera.cy = 3000;
+  for (double& d : forged.camera.distortion) d = 0.0;  // Bonn's lens would fold over inside so wide an image
   forged.color =
       toMsg(encodeImage(cv::Mat(6000, 8000, CV_8UC3, cv::Scalar(90, 120, 150)), ImageEncoding::kPng));
   forged.depth = toMsg(encodeImage(cv::Mat(6000, 8000, CV_16UC1, cv::Scalar(10000)), ImageEncoding::kPng));
