@@ -24,6 +24,18 @@ ToolRun detect(std::vector<std::string> arguments) {
   return test::runCommand("detect_run", std::move(arguments), 120);
 }
 
+// A scratch folder of three photos, the middle one (b.jpg) cut off inside its JPEG headers.
+fs::path folderWithACorruptImage(const std::string& name) {
+  const fs::path dir = test::scratchDir(name);
+  fs::copy_file(test::sharedPath("images/bus.jpg"), dir / "a.jpg");
+  fs::copy_file(test::sharedPath("images/zidane.jpg"), dir / "c.jpg");
+  std::ifstream in(test::sharedPath("images/person.jpg"), std::ios::binary);
+  std::string head(2000, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  std::ofstream(dir / "b.jpg", std::ios::binary) << head;
+  return dir;
+}
+
 // A confidence is a probability: --conf 5 found no box and --conf -1 every candidate, both without a word.
 TEST(DetectTool, AConfidenceOutsideZeroToOneIsAUsageErrorNamingTheOption) {
   const std::string image = test::sharedPath("images/bus.jpg");
@@ -40,15 +52,7 @@ TEST(DetectTool, AConfidenceOutsideZeroToOneIsAUsageErrorNamingTheOption) {
 // A corrupt image in a folder stopped the run with a message naming no file: it is skipped with a warning
 // naming it, the rest are read, and the end says how many were skipped.
 TEST(DetectTool, ACorruptImageIsSkippedNamingItAndTheRestAreRead) {
-  const fs::path dir = test::scratchDir("images");
-  fs::copy_file(test::sharedPath("images/bus.jpg"), dir / "a.jpg");
-  fs::copy_file(test::sharedPath("images/zidane.jpg"), dir / "c.jpg");
-  {
-    std::ifstream in(test::sharedPath("images/person.jpg"), std::ios::binary);
-    std::string head(2000, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    std::ofstream(dir / "b.jpg", std::ios::binary) << head;  // cut inside its headers
-  }
+  const fs::path dir = folderWithACorruptImage("images");
   const ToolRun r = detect({"--input", dir.string()});
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("warning: " + (dir / "b.jpg").string() + ": "), std::string::npos) << r.output;
@@ -88,15 +92,7 @@ TEST(BenchDetectorTool, CountsAndModelsOutsideTheirRangeAreUsageErrors) {
 // A corrupt image among those timed stopped the benchmark with a message naming no file: it is left out,
 // named, and the rest are timed.
 TEST(BenchDetectorTool, ACorruptImageIsLeftOutNamingItAndTheRestAreTimed) {
-  const fs::path dir = test::scratchDir("bench_images");
-  fs::copy_file(test::sharedPath("images/bus.jpg"), dir / "a.jpg");
-  fs::copy_file(test::sharedPath("images/zidane.jpg"), dir / "c.jpg");
-  {
-    std::ifstream in(test::sharedPath("images/person.jpg"), std::ios::binary);
-    std::string head(2000, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    std::ofstream(dir / "b.jpg", std::ios::binary) << head;  // cut inside its headers
-  }
+  const fs::path dir = folderWithACorruptImage("bench_images");
   const ToolRun r =
       bench({"--input", dir.string(), "--frames", "3", "--warmup", "0", "--models", "yolov5n-320"});
   EXPECT_EQ(r.status, 0) << r.output;

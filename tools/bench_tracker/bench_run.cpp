@@ -276,6 +276,8 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
   if (!(drop_p >= 0.0 && drop_p < 1.0)) throw bmp::ArgError("--drop-bursts must be at least 0 and below 1");
   const long long drop_seed = args.integer("drop-seed");
   if (drop_seed < 0) throw bmp::ArgError("--drop-seed must not be negative");
+  // First: it refuses a --start past the end as a usage error naming the folder.
+  const double period = passPeriod(dir, start);
   PassedFrames out;
   bmp::Trajectory one_pass;
   TumFolderOptions folder;
@@ -285,7 +287,6 @@ PassedFrames passedFrames(const bmp::ArgParser& args, const CameraIntrinsics& ca
   FrameProvider first = tumFolderFrames(dir, camera, folder);
   folder.groundtruth = nullptr;
   folder.warn = false;  // the later passes read what the first has named
-  const double period = passPeriod(dir, start);
   for (long long p = 0; p < passes; ++p)
     for (const auto& pose : one_pass) {
       auto shifted = pose;
