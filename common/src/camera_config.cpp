@@ -33,7 +33,8 @@ void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
     c.check(std::abs(d) <= kMaxDistortionCoefficient, "distortion",
             "coefficients must lie within +-10 (a lens's)");
   }
-  c.check(undistortionProblem(k).empty(), "distortion", undistortionProblem(k));
+  const std::string fold = undistortionProblem(k);
+  c.check(fold.empty(), "distortion", fold);
 }
 
 }  // namespace

@@ -80,10 +80,7 @@ void MapperNode::startMapWithCamera(const keyframe_t& msg) {
   if (camera_.camera() != nullptr) {
     log::warn("keyframe ", msg.id, ": ", camera_.replacement(msg.camera, msg.depth_scale), "; dropping the ",
               mapper_->keyframeCount(), " keyframe(s) mapped with the replaced camera");
-    const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
-    mapper_.emplace(settings);
-    pose_order_.clear();
-    floor_reported_ = false;
+    startEmptyMap();
   }
   camera_.pin(msg.camera, msg.depth_scale);
 }
@@ -106,11 +103,15 @@ void MapperNode::setAsideForNewTrackerMap() {
   } catch (const FileWriteError& e) {
     log::error("the tracker's earlier map not saved: ", e.what());
   }
+  startEmptyMap();
+  grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
+}
+
+void MapperNode::startEmptyMap() {
   const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
   mapper_.emplace(settings);
   pose_order_.clear();
   floor_reported_ = false;
-  grid_dirty_ = cloud_dirty_ = save_dirty_ = true;
 }
 
 void MapperNode::onKeyframe(const keyframe_t& msg) {

@@ -44,6 +44,8 @@ class MapperNode {
   // merged, the new map's keyframes would land in the old one's frame.
   bool startsNewTrackerMap(const keyframe_t& msg) const;
   void setAsideForNewTrackerMap();
+  // An empty map in place of the one held: no keyframes, no pose stamps, no fitted floor.
+  void startEmptyMap();
   void publishDue(double now_s);
   // The loop's work besides messages: octree upkeep, publishing, saving.
   void maintainAndPublish(double now_s);
