@@ -41,11 +41,15 @@ void DetectionBook::frameHeard(int64_t seq, int64_t utime) {
     heard_.clear();
     discarded_ += static_cast<int64_t>(eraseAbove(by_frame_, seq));
     eraseAbove(recent_, seq);
+    eraseAbove(taken_, seq);
   }
   heard_[seq] = utime;
   while (heard_.size() > capacity_) heard_.erase(heard_.begin());
   eraseOtherStamps(by_frame_, seq, utime);
   eraseOtherStamps(recent_, seq, utime);
+  // Heard now, so nothing was taken for it in this stream: a replay restarted from its first frame stamps
+  // its frames as before, and their answers are news.
+  taken_.erase(taken_.lower_bound({seq, INT64_MIN}), taken_.upper_bound({seq, INT64_MAX}));
 }
 
 std::string DetectionBook::add(int64_t seq, FrameBoxes boxes) {
@@ -61,8 +65,13 @@ std::string DetectionBook::add(int64_t seq, FrameBoxes boxes) {
     if (waiting >= kMaxPerSeq && by_frame_.count({seq, utime}) == 0)
       return "frame " + std::to_string(seq) + " already has " + std::to_string(waiting) +
              " answers waiting with other stamps";
-    // The first answer stands: a second one would hide the boxes of the first. The same answer again is
-    // the detector answering a frame lockstep capture sent again.
+    // The first answer stands: a second one would hide the boxes of the first, or, once the first was
+    // taken, be taken again as late boxes. The same answer again is the detector answering a frame lockstep
+    // capture sent again.
+    if (const auto taken = taken_.find({seq, utime}); taken != taken_.end())
+      return sameAnswer(taken->second, boxes)
+                 ? ""
+                 : "a second, different answer for frame " + std::to_string(seq) + ", which took its first";
     if (const auto waiting_one = by_frame_.find({seq, utime}); waiting_one != by_frame_.end())
       return sameAnswer(waiting_one->second, boxes)
                  ? ""
@@ -90,6 +99,8 @@ std::optional<FrameBoxes> DetectionBook::take(int64_t seq, int64_t utime, std::c
   if (it == by_frame_.end()) return std::nullopt;
   FrameBoxes out = std::move(it->second);
   by_frame_.erase(it);
+  taken_[key] = out;
+  while (taken_.size() > capacity_) taken_.erase(taken_.begin());
   return out;
 }
 

@@ -10,8 +10,10 @@
 // Answers are kept by (seq, stamp): one that names a frame's seq with another stamp (a forged or stale
 // answer) is kept apart and never displaces or hides the real one. Once the frame itself is heard
 // (frameHeard), answers naming its seq with another stamp are refused and dropped, and a seq not heard yet
-// holds at most kMaxPerSeq answers, so a flood of forgeries cannot push the real answers out. Bounded: only
-// the `capacity` answers with the highest seq are kept.
+// holds at most kMaxPerSeq answers, so a flood of forgeries cannot push the real answers out. An answer for a
+// frame that already took one is no news (lockstep capture sent the frame again and the detector answered
+// it again): it is not kept, or a keyframe held for its late boxes would take it as late and apply the same
+// boxes twice. Bounded: only the `capacity` answers with the highest seq are kept, and as many taken.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -37,8 +39,9 @@ class DetectionBook {
   explicit DetectionBook(std::size_t capacity = 256) : capacity_(capacity) {}
 
   // Keeps the answer; or says why not (its frame was heard with another stamp, its seq already holds
-  // kMaxPerSeq answers, or a different answer for the frame is waiting: the first stands) and keeps
-  // nothing. The same answer again (for a frame capture sent again) is no news: "" and nothing changes.
+  // kMaxPerSeq answers, or a different answer for the frame is waiting or was taken: the first stands) and
+  // keeps nothing. The same answer again (for a frame capture sent again) is no news: "" and nothing
+  // changes, whether the first is still waiting or was taken.
   std::string add(int64_t seq, FrameBoxes boxes);
   // The frame (seq, utime) was received: other stamps for its seq are forgeries from here on.
   void frameHeard(int64_t seq, int64_t utime);
@@ -62,6 +65,7 @@ class DetectionBook {
   std::condition_variable arrived_;
   std::map<std::pair<int64_t, int64_t>, FrameBoxes> by_frame_;  // (seq, utime)
   std::map<std::pair<int64_t, int64_t>, FrameBoxes> recent_;    // the newest usable answers, taken or not
+  std::map<std::pair<int64_t, int64_t>, FrameBoxes> taken_;     // the newest answers taken, as taken
   std::map<int64_t, int64_t> heard_;                            // seq -> stamp of the newest frames heard
   int64_t discarded_ = 0;
 };

@@ -108,6 +108,50 @@ TEST(DetectionBook, ForgedAnswersNeitherDisplaceStandInsNorReplaceTheFirst) {
   EXPECT_FALSE(book.take(5, 5000, kNoWait)) << "once";
 }
 
+// Lockstep capture sent a frame again and the detector answered it again: the frame took its answer, and
+// the answer again is not kept to be taken a second time (as late boxes for the keyframe it made).
+TEST(DetectionBook, AnAnswerForAFrameThatTookOneIsNotKept) {
+  DetectionBook book;
+  ASSERT_EQ(hearAndAdd(book, 5, answer(5000, 3)), "");
+  ASSERT_TRUE(book.take(5, 5000, kNoWait));
+  EXPECT_EQ(book.add(5, answer(5000, 3)), "") << "the same answer again is no news";
+  EXPECT_FALSE(book.take(5, 5000, kNoWait)) << "and is not taken again";
+  EXPECT_EQ(book.add(5, answer(5000, 1)), "a second, different answer for frame 5, which took its first");
+  EXPECT_FALSE(book.take(5, 5000, kNoWait));
+  EXPECT_EQ(book.size(), 0u);
+  ASSERT_EQ(hearAndAdd(book, 6, answer(6000, 2)), "") << "the next frame's answer is kept";
+  EXPECT_TRUE(book.take(6, 6000, kNoWait));
+}
+
+// A frame tracked without its answer (real time, not come yet) takes it late, once.
+TEST(DetectionBook, AFrameThatTookNoneTakesItsAnswerLate) {
+  DetectionBook book;
+  book.frameHeard(5, 5000);
+  EXPECT_FALSE(book.take(5, 5000, kNoWait));
+  ASSERT_EQ(book.add(5, answer(5000, 3)), "");
+  const auto late = book.take(5, 5000, kNoWait);
+  ASSERT_TRUE(late);
+  EXPECT_EQ(late->boxes.size(), 3u);
+  EXPECT_EQ(book.add(5, answer(5000, 3)), "");
+  EXPECT_FALSE(book.take(5, 5000, kNoWait)) << "once";
+}
+
+// A capture restarted on the same recording stamps its frames as before: they are new frames, and their
+// answers are kept.
+TEST(DetectionBook, AfterACaptureRestartTheReplayedFramesTakeTheirAnswersAgain) {
+  DetectionBook book;
+  for (int64_t seq = 0; seq < 10; ++seq) {
+    ASSERT_EQ(hearAndAdd(book, seq, answer(seq * 1000, 1)), "");
+    ASSERT_TRUE(book.take(seq, seq * 1000, kNoWait));
+  }
+  for (int64_t seq = 0; seq < 10; ++seq) {
+    ASSERT_EQ(hearAndAdd(book, seq, answer(seq * 1000, 2)), "") << seq;
+    const auto got = book.take(seq, seq * 1000, kNoWait);
+    ASSERT_TRUE(got) << seq;
+    EXPECT_EQ(got->boxes.size(), 2u);
+  }
+}
+
 // Lockstep waits for the frame's answer; an answer that comes while it waits ends the wait.
 TEST(DetectionBook, TakeWaitsForAnAnswerThatArrives) {
   DetectionBook book;

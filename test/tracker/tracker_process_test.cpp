@@ -416,6 +416,55 @@ TEST(TrackerProcess, DetectionAnswersOfAnotherImageOrStampAreRefused) {
   EXPECT_EQ(log.find("answer for frame 5"), std::string::npos) << log;
 }
 
+// The detector's answer for Bonn frame i: one person box, or none.
+detections_t answerFor(const rgbd_frame_t& frame, bool person) {
+  detections_t d{};
+  d.seq = frame.seq;
+  d.utime = frame.utime;
+  d.model = "yolov5n_coco_320";
+  d.image_width = 640;
+  d.image_height = 480;
+  if (person) {
+    detection_t b{};
+    b.x = 200;
+    b.y = 100;
+    b.width = 160;
+    b.height = 300;
+    b.class_id = 0;
+    b.label = "person";
+    b.score = 0.9f;
+    b.dynamic_level = detection_t::LEVEL_HIGH;
+    d.detections.push_back(b);
+  }
+  d.num_detections = static_cast<int32_t>(d.detections.size());
+  return d;
+}
+
+// Lockstep capture sends a frame again when its pose is slow to come, and the detector answers it again.
+// The first keyframe, held until the camera settles, took its boxes when it was tracked: the answer again
+// is no news. It was taken as the keyframe's late boxes, applied a second time (runs differed).
+TEST(TrackerProcess, AnAnswerForAFrameSentAgainIsNotTakenAsLateBoxes) {
+  TrackerUnderTest t("tracker_answer_again", 8);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  const rgbd_frame_t first = t.frame(0);
+  t.publish("DETECTIONS", answerFor(first, true));
+  ASSERT_TRUE(t.publishAndWait(first)) << "no pose for 0";
+  ASSERT_TRUE(t.publishAndWait(first)) << "no pose for 0 sent again";
+  t.publish("DETECTIONS", answerFor(first, true));  // the same answer again
+  for (int i = 1; i < 8; ++i) {
+    const rgbd_frame_t msg = t.frame(i);
+    t.publish("DETECTIONS", answerFor(msg, false));
+    ASSERT_TRUE(t.publishAndWait(msg)) << "no pose for " << i;
+  }
+  ASSERT_TRUE(t.pumpUntil([&] { return !t.keyframes.empty(); }, 10.0)) << "keyframe 0 never released";
+  EXPECT_EQ(t.keyframes.front().id, 0);
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("tracked 8 frames"), std::string::npos) << log;
+  EXPECT_EQ(log.find("took theirs late"), std::string::npos) << log;
+  EXPECT_EQ(log.find("answer for frame 0"), std::string::npos) << "the same answer is no error\n" << log;
+}
+
 // A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"
 // against the new stream. Against the old stream's seq (the largest seen, as before), a forged answer for
 // seq 1500 was taken, and with others like it would have pushed the real answers out of the book.
