@@ -465,6 +465,25 @@ TEST(TrackerProcess, AnAnswerForAFrameSentAgainIsNotTakenAsLateBoxes) {
   EXPECT_EQ(log.find("answer for frame 0"), std::string::npos) << "the same answer is no error\n" << log;
 }
 
+// Another publisher's frame, refused, comes between a frame and lockstep capture sending that frame again
+// (its pose was slow): the resend is still answered with the frame's pose. The refusal's answer took the
+// place of the frame's, and capture waited for an answer that never came.
+TEST(TrackerProcess, ARefusedFrameDoesNotReplaceTheAnswerAResendRepeats) {
+  TrackerUnderTest t("tracker_refused_between", 9);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  rgbd_frame_t forged = t.frame(3);
+  forged.depth_scale = 0.0;
+  ASSERT_TRUE(t.publishAndWait(forged));
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  ASSERT_TRUE(t.publishAndWait(t.frame(2))) << "the resend of frame 2 was not answered";
+  EXPECT_EQ(t.poses.back().seq, 2);
+  EXPECT_EQ(t.poses.back().utime, t.frame(2).utime);
+  EXPECT_NE(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  EXPECT_TRUE(t.publishAndWait(forged)) << "a refused frame sent again is answered again";
+  EXPECT_EQ(t.child().stop(20.0), 0);
+}
+
 // A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"
 // against the new stream. Against the old stream's seq (the largest seen, as before), a forged answer for
 // seq 1500 was taken, and with others like it would have pushed the real answers out of the book.

@@ -33,8 +33,10 @@ class DetectorNode {
   void receive(const rgbd_frame_t& msg);
   void publishResults();
   // A frame that cannot be processed is warned about, counted, and still answered (no boxes, the reason),
-  // so lockstep never waits in vain.
-  void skip(const FrameResult& failed);
+  // so lockstep never waits in vain. A frame the stream refused on arrival is judged and answered again if
+  // sent again, so its answer is not remembered: it would replace the answer a resend of the real frame
+  // before it repeats.
+  void skip(const FrameResult& failed, bool refused_on_arrival = false);
   void answer(const detections_t& msg);  // publishes and remembers it for a repeated frame
 
   ProcessContext& ctx_;

@@ -74,9 +74,9 @@ void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& ve
       log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
     log::warn(reason, "; skipped", leftOutNote(*left_out));
   }
-  const slam_pose_t answer = toSkippedPoseMessage(msg, reason);
-  last_pose_.remember(answer);
-  ctx_.lcm.publish(channels_.pose, answer);
+  // Not remembered for a resend: the frame sent again is judged again and answered again, and a refused
+  // frame (another publisher's) must not replace the answer a lockstep resend of the real one repeats.
+  ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));
   {
     const std::lock_guard<std::mutex> lock(refusal_mutex_);
     last_refusal_ = reason;
