@@ -25,9 +25,13 @@ TEST(ChildProcess, ExitCodeAndPipedOutput) {
 
 TEST(ChildProcess, StopEscalatesToKill) {
   // The shell ignores SIGINT, so stop() must fall back to SIGKILL.
-  ChildProcess child({"/bin/sh", "-c", "trap '' INT; while true; do sleep 0.05; done"});
+  ChildProcess child({"/bin/sh", "-c", "trap '' INT; echo ready; while true; do sleep 0.05; done"},
+                     ChildProcess::Output::kPipe);
   EXPECT_TRUE(child.running());
-  ::usleep(300000);  // let the shell install its trap before the signal arrives
+  // The shell says when its trap is installed: a signal before that would end it with SIGINT.
+  char c = 0;
+  ASSERT_EQ(::read(child.outputFd(), &c, 1), 1);
+  EXPECT_EQ(c, 'r');
   EXPECT_EQ(child.stop(0.3), 128 + SIGKILL);
   EXPECT_TRUE(child.killedBySignal());
 }

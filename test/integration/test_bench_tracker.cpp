@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -24,10 +25,14 @@ using test::Outcome;
 using test::runCommand;
 constexpr double kTimeoutS = 240;  // the detector over 90 frames on a loaded 2-core machine
 
-// The number after `label` in the summary, or -1.
+// The number after `label` in the summary. Missing (or "n/a"): a failure, and NaN, which every comparison
+// the tests make fails on too.
 double figure(const std::string& output, const std::string& label) {
   std::smatch m;
-  if (!std::regex_search(output, m, std::regex(label + R"(\s+([0-9.]+))"))) return -1.0;
+  if (!std::regex_search(output, m, std::regex(label + R"(\s+([0-9.]+))"))) {
+    ADD_FAILURE() << "no figure '" << label << "' in the output";
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   return std::stod(m[1]);
 }
 

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <bmp/detections_t.hpp>
 #include <bmp/process_status_t.hpp>
@@ -204,10 +207,14 @@ TEST(CaptureOverLcm, LockstepIgnoresForgedAnswers) {
   EXPECT_EQ(sent.size(), static_cast<std::size_t>(frames));
   EXPECT_TRUE(order_errors.empty()) << "published before the real answers: " << order_errors.front();
   EXPECT_EQ(log.find("no answer on"), std::string::npos) << log;
-  EXPECT_NE(log.find("answers ignored (not for a frame we sent) " + std::to_string(forged)),
-            std::string::npos)
-      << "forged " << forged << "\n"
-      << log;
+  // Every forgery is counted but the last frame's, which may come after the real answers let capture finish
+  // (when this process is slower than the listener's 100 ms delay).
+  const std::string counted = "answers ignored (not for a frame we sent) ";
+  const auto at = log.find(counted);
+  ASSERT_NE(at, std::string::npos) << log;
+  const long ignored = std::stol(log.substr(at + counted.size()));
+  EXPECT_LE(ignored, forged) << log;
+  EXPECT_GE(ignored, forged - 6) << "forged " << forged << "\n" << log;
 }
 
 // Lockstep with two answer channels waits for the slower consumer on each frame: a detector-like listener
@@ -302,7 +309,8 @@ TEST(CaptureOverLcm, LockstepTimeoutNamesTheSilentChannel) {
   const fs::path dir = test::scratchDir("lcm_silent_ack");
   const std::string url = test::uniqueLcmUrl(11);
   const std::string config = (dir / "capture.yaml").string();
-  std::ofstream(config) << "capture:\n  lockstep_timeout_s: 0.3\n";
+  // Long enough that the listener's SLAM_POSE answer always comes within it, even on a loaded machine.
+  std::ofstream(config) << "capture:\n  lockstep_timeout_s: 2.0\n";
   ChildProcess listener(
       {binPath("bmp-test-listener"), "--lcm-url", url, "--report", (dir / "r.txt").string(), "--ack"},
       ChildProcess::Output::kFile, (dir / "listener.log").string());
@@ -313,8 +321,17 @@ TEST(CaptureOverLcm, LockstepTimeoutNamesTheSilentChannel) {
   ASSERT_EQ(capture.wait(60).value_or(-1), 0) << test::readText((dir / "capture.log").string());
   listener.stop(5.0);
   const std::string log = test::readText((dir / "capture.log").string());
-  EXPECT_NE(log.find("no answer on DETECTIONS for frame 0"), std::string::npos) << log;
-  EXPECT_EQ(log.find("no answer on SLAM_POSE"), std::string::npos) << log;
+  // One warning per frame, naming only the silent channel (several silent ones are named in one line).
+  std::vector<std::string> warnings;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);)
+    if (const auto at = line.find("no answer on "); at != std::string::npos)
+      warnings.push_back(line.substr(at));
+  ASSERT_EQ(warnings.size(), 3u) << log;
+  for (std::size_t seq = 0; seq < warnings.size(); ++seq)
+    EXPECT_EQ(warnings[seq].rfind("no answer on DETECTIONS for frame " + std::to_string(seq) + " within", 0),
+              0u)
+        << warnings[seq];
   EXPECT_NE(log.find("lockstep timeouts 3"), std::string::npos) << log;
 }
 

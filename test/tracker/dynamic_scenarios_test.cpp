@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -32,7 +33,10 @@ struct Score {
   // Each tracked frame's position std (TrackResult::position_std_m), with over half the view on movers and
   // with less than a tenth (after the first second).
   TimingStats position_std_covered, position_std_clear;
-  double recall(long out, long on) const { return on > 0 ? static_cast<double>(out) / on : 1.0; }
+  // NaN over no keypoints at all: every bound the tests check then fails, as it should (nothing was scored).
+  double recall(long out, long on) const {
+    return on > 0 ? static_cast<double>(out) / on : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 using BoxesPerFrame = std::vector<std::vector<ObjectBox>>;
