@@ -204,7 +204,11 @@ void DynamicStage::conclude(Frame& frame, const FrameGeometry& g, const Frame* l
         frame.dynamic[i] = isDynamic(frame.moving[i], bayes_);
       }
   }
-  for (int i = 0; i < f.size(); ++i)
+}
+
+void DynamicStage::commit(const Frame& frame) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  for (int i = 0; i < frame.features->size(); ++i)
     if (usableMatch(frame.points[i])) frame.points[i]->moving_probability = frame.moving[i];
 }
 

@@ -13,8 +13,9 @@
 //                     motion is a second observation; so is each unmatched keypoint's residual against its
 //                     last-frame keypoint, tracked over a wide window (keypoint_tracks.hpp), which also
 //                     gives it that keypoint's posterior as prior. Inside a moving region only a large
-//                     residual is an observation (a person standing still keeps the box's word). The map
-//                     points take the posteriors.
+//                     residual is an observation (a person standing still keeps the box's word);
+//   4. commit()       once the frame is known to be tracked: the map points take the posteriors (a frame
+//                     posed wrongly would mark the map's static points as moving, as its residuals are).
 // A keypoint over the threshold keeps its match, so its probability travels on, but takes no part in the
 // pose, new map points or local BA.
 #include <vector>
@@ -42,6 +43,8 @@ class DynamicStage {
   // (keypoint_tracks.hpp), whose prior they become; with kGeometric each track is judged as a matched
   // point is.
   void conclude(Frame& frame, const FrameGeometry& g, const Frame* last) const;
+  // The matched map points take the frame's posteriors (after conclude, for a frame that tracked).
+  void commit(const Frame& frame) const;
   // A keyframe's late boxes (they came after it was tracked): it and its map points take the observation,
   // in place of the stand-in boxes' observation when its frame was observed with those
   // (KeyFrame::stand_in_z).

@@ -228,7 +228,7 @@ bool Tracker::trackLocalMap(Frame& frame) {
   matchLocalPoints(frame, local_points_, *geometry_, o, config_.matcher,
                    after_reloc ? o.reloc_search_radius : o.local_search_radius);
   optimizePose(frame, &frame.position_std_m);  // the frame's last solve: the one its pose comes from
-  // The geometric observation; map points take the posteriors.
+  // The geometric observation; the map points take the posteriors only if the frame tracks (below).
   {
     const ScopedAccumulator timer(dynamic_ms_);
     dynamic_.conclude(frame, *geometry_, last_frame_.features ? &last_frame_ : nullptr);
@@ -242,13 +242,19 @@ bool Tracker::trackLocalMap(Frame& frame) {
       ++inliers;
     }
   }
+  const bool recently_relocalised = frame.seq - last_reloc_seq_ < config_.keyframes.max_frames;
+  const bool tracked =
+      inliers >= (recently_relocalised || state_ == TrackingState::kLost ? o.min_inliers_after_reloc
+                                                                         : o.min_inliers_local_map);
+  // A frame that fails here was posed wrongly: every residual looks like motion, and its posteriors would
+  // mark the map's static points as moving (left out of local BA and of the relocalisation that follows).
+  // Committed before the outliers are dropped: an outlier's large residual is the geometric observation.
+  if (tracked) dynamic_.commit(frame);
   dropOutliers(frame);
   // Temporary points helped the pose; they must not be mistaken for map points from here on.
   for (auto& mp : frame.points)
     if (mp && mp->temporary()) mp.reset();
-  const bool recently_relocalised = frame.seq - last_reloc_seq_ < config_.keyframes.max_frames;
-  return inliers >= (recently_relocalised || state_ == TrackingState::kLost ? o.min_inliers_after_reloc
-                                                                            : o.min_inliers_local_map);
+  return tracked;
 }
 
 }  // namespace bmp::tracker

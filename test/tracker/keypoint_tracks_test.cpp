@@ -12,6 +12,7 @@
 #include "tracker/dynamic_stage.hpp"
 #include "tracker/key_frame.hpp"
 #include "tracker/keypoint_tracks.hpp"
+#include "tracker/map_point.hpp"
 #include "tracker/matcher.hpp"
 
 namespace bmp::tracker {
@@ -217,6 +218,49 @@ TEST(PapersPrior, AKeypointKeepsItsHistoryWhenTheBoxIsMissedForAFrame) {
   DynamicOptions untracked = paper;
   untracked.track_radius_px = 0.0;
   EXPECT_LT(run(untracked, 4, 2)[3].box, 0.05) << "without the track, each keypoint starts at 0.5";
+}
+
+// The map's points take a frame's posteriors only when the tracker commits them (the frame tracked). Posed
+// 10 cm off, every room keypoint's residual looks like motion: conclude() judges them moving on the frame,
+// and the map points stay as they were until commit().
+TEST(GeometricObservation, MapPointsTakeTheFramesPosteriorsOnlyWhenCommitted) {
+  ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
+  const SlidingBox scene;
+  const Rig s;
+  DynamicOptions geometric;
+  geometric.mode = DynamicMode::kGeometric;
+  const DynamicStage stage(geometric, s.config.pose);
+  Frame f = s.frame(scene, 0);
+  int64_t id = 0;
+  for (int k = 0; k < f.features->size(); ++k) {
+    if (!f.features->hasDepth(k) || !test_rig::insideBy({0, 0, 640, 480}, f.features->keys[k].pt, 20) ||
+        test_rig::insideBy(scene.where(0), f.features->keys[k].pt, -12))
+      continue;  // room keypoints with depth only
+    const Eigen::Vector3d p = s.g.camera.backProject(f.features->un[k], f.features->depth[k]);
+    f.points[k] = std::make_shared<MapPoint>(id++, p, f.features->descriptors.row(k), 0);
+    f.points[k]->moving_probability = 0.01f;
+  }
+  ASSERT_GT(id, 100);
+  SE3 off = SE3::Identity();
+  off.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
+  f.setPose(off);
+  const std::vector<ObjectBox> none;
+  stage.observe(f, &none, nullptr);
+  stage.applyPriors(f);
+  stage.conclude(f, s.g, nullptr);
+  int judged_moving = 0, map_unchanged = 0;
+  for (int k = 0; k < f.features->size(); ++k) {
+    if (!f.points[k]) continue;
+    judged_moving += f.moving[k] > 0.1f;  // from the map's 0.01
+    map_unchanged += f.points[k]->moving_probability == 0.01f;
+  }
+  EXPECT_GT(judged_moving, id / 2) << "posed 10 cm off, the room looks moving to this frame";
+  EXPECT_EQ(map_unchanged, id) << "not yet committed";
+  stage.commit(f);
+  for (int k = 0; k < f.features->size(); ++k) {
+    if (!f.points[k]) continue;
+    EXPECT_EQ(f.points[k]->moving_probability, f.moving[k]);
+  }
 }
 
 // Real time: a frame observed with a stand-in box (the newest earlier answer, its own not come) becomes a
