@@ -41,7 +41,11 @@ std::vector<ListEntry> readListFile(const std::string& path, std::string* cut_la
 std::vector<StampMatch> associateStamps(const std::vector<double>& first, const std::vector<double>& second,
                                         double max_difference, double offset) {
   // Candidate pairs within max_difference; second is searched through a sorted copy so this stays
-  // O(n log n) for long sequences, while the greedy choice is exactly associate.py's.
+  // O(n log n) for long sequences, while the greedy choice is exactly associate.py's. Each stamp takes only
+  // its kNearest nearest candidates: a real list has one or two within the tolerance, and lists with many
+  // near-equal stamps (or a tolerance of hours) would otherwise make every pair a candidate (10000 frames:
+  // 5 GB and a minute and a half).
+  constexpr std::size_t kNearest = 16;
   std::vector<std::size_t> order(second.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return second[a] < second[b]; });
@@ -50,11 +54,18 @@ std::vector<StampMatch> associateStamps(const std::vector<double>& first, const 
 
   std::vector<std::tuple<double, double, double, std::size_t, std::size_t>> candidates;
   for (std::size_t a = 0; a < first.size(); ++a) {
-    auto it = std::lower_bound(sorted.begin(), sorted.end(), first[a] - max_difference);
-    for (; it != sorted.end() && *it < first[a] + max_difference; ++it) {
-      const std::size_t b = order[static_cast<std::size_t>(it - sorted.begin())];
-      const double diff = std::abs(first[a] - (second[b] + offset));
-      if (diff < max_difference) candidates.emplace_back(diff, first[a], second[b], a, b);
+    // Outwards from where first[a] would be, the nearer side first.
+    auto lo = std::lower_bound(sorted.begin(), sorted.end(), first[a]);
+    auto hi = lo;
+    for (std::size_t k = 0; k < kNearest; ++k) {
+      const double below = lo != sorted.begin() ? first[a] - *std::prev(lo) : HUGE_VAL;
+      const double above = hi != sorted.end() ? *hi - first[a] : HUGE_VAL;
+      const bool take_below = below <= above;
+      const double diff = take_below ? below : above;
+      if (!(diff < max_difference)) break;
+      const auto at = take_below ? --lo : hi++;
+      const std::size_t b = order[static_cast<std::size_t>(at - sorted.begin())];
+      candidates.emplace_back(diff, first[a], second[b], a, b);
     }
   }
   std::sort(candidates.begin(), candidates.end());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include <opencv2/imgcodecs.hpp>
@@ -71,6 +72,24 @@ TEST(TumSequence, AssociationIsGreedyByDifference) {
   EXPECT_EQ(m[0].second, 1u);
   EXPECT_EQ(m[1].second, 0u);
   EXPECT_TRUE(associateStamps({1.0}, {1.03}, 0.02).empty());
+}
+
+// Each stamp's candidates are its nearest few: a tolerance of any size (bmp-run checks a folder with an
+// infinite one) or stamps packed closer than it no longer make every pair a candidate. 20000 x 20000 frames
+// took 16 GB that way; here each frame pairs with its own depth image, 5 ms later.
+TEST(TumSequence, AssociationOfLongListsWithAnyToleranceKeepsTheNearestPairs) {
+  std::vector<double> rgb, depth;
+  for (int i = 0; i < 20000; ++i) {
+    rgb.push_back(1000.0 + i / 30.0);
+    depth.push_back(1000.005 + i / 30.0);
+  }
+  for (const double tolerance : {0.02, 3600.0, std::numeric_limits<double>::infinity()}) {
+    const auto m = associateStamps(rgb, depth, tolerance);
+    ASSERT_EQ(m.size(), rgb.size()) << tolerance;
+    std::size_t own = 0;
+    for (std::size_t i = 0; i < m.size(); ++i) own += m[i].first == i && m[i].second == i;
+    EXPECT_EQ(own, rgb.size()) << tolerance;
+  }
 }
 
 TEST(TumSequence, MissingFolderAndListAreClearErrors) {
@@ -285,12 +304,13 @@ TEST(Pacer, RealtimeFollowsStampsAndFastDoesNotWait) {
   realtime.waitUntilDue(10.2);  // due 0.1 s after the first at speed 2
   const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GE(waited, 0.099);
-  EXPECT_LT(waited, 0.5);
+  EXPECT_LT(waited, 5.0);  // not the 10 s of the stamps themselves (a loaded machine may add a little)
   Pacer fast(RateMode::kFast, 1.0);
   const auto t1 = std::chrono::steady_clock::now();
   fast.waitUntilDue(0.0);
   fast.waitUntilDue(100.0);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 0.05);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 5.0)
+      << "fast waited for stamps 100 s apart";
   EXPECT_THROW(parseRateMode("slow"), std::invalid_argument);
 }
 
