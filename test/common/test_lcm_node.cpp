@@ -63,6 +63,23 @@ TEST(LcmNode, TypedRoundTripOverMemq) {
   EXPECT_LT((fromMsg(got[0].T_world_cam).translation() - Eigen::Vector3d(1, 2, 3)).norm(), 1e-12);
 }
 
+// LCM subscribes by regular expression: a configured channel name that is not one is an error naming it
+// (it crashed the process: LCM returned no subscription).
+TEST(LcmNode, AChannelNameThatIsNoValidPatternIsAnErrorNamingIt) {
+  LcmNode node("memq://", [](const std::string&) {});
+  try {
+    node.subscribe<slam_pose_t>("SLAM_POSE[", [](const slam_pose_t&, const ReceivedInfo&) {});
+    FAIL() << "subscribed";
+  } catch (const LcmError& e) {
+    EXPECT_NE(std::string(e.what()).find("channel 'SLAM_POSE['"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(node.subscribeRaw("SLAM_(POSE", [](const void*, uint32_t, const ReceivedInfo&) {}), LcmError);
+  EXPECT_THROW(checkChannelName(""), LcmError);
+  EXPECT_THROW(checkChannelName(std::string(64, 'A')), LcmError) << "LCM's limit is 63 bytes";
+  EXPECT_NO_THROW(checkChannelName(std::string(63, 'A')));
+  EXPECT_NO_THROW(checkChannelName("robot1/SLAM_POSE.v2-a:b"));
+}
+
 // Another publisher's bytes on our channel must be reported and skipped, never crash or reach the handler.
 TEST(LcmNode, MalformedMessageIsCountedAndNamed) {
   std::vector<std::string> warnings;

@@ -1,5 +1,7 @@
 #include "bmp/lcm/lcm_node.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 
@@ -62,10 +64,22 @@ bool LcmNode::handle(int timeout_ms) {
 }
 
 void LcmNode::subscribeRaw(const std::string& channel, RawHandler handler) {
+  checkChannelName(channel);
   auto sub = std::make_unique<RawSubscriber>(this, std::move(handler));
-  lcm::Subscription* s = lcm_.subscribe(channel, &RawSubscriber::onMessage, sub.get());
-  s->setQueueCapacity(queue_capacity_);
+  lcm_.subscribe(channel, &RawSubscriber::onMessage, sub.get())->setQueueCapacity(queue_capacity_);
   subscribers_.push_back(std::move(sub));
+}
+
+void checkChannelName(const std::string& channel) {
+  const auto allowed = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-' || c == '.' || c == '/' ||
+           c == ':';
+  };
+  if (channel.empty() || channel.size() > LCM_MAX_CHANNEL_NAME_LENGTH ||
+      !std::all_of(channel.begin(), channel.end(), allowed))
+    throw LcmError("channel '" + log::printable(channel) + "': a channel name is 1 to " +
+                   std::to_string(LCM_MAX_CHANNEL_NAME_LENGTH) +
+                   " letters, digits and _ - . / : (LCM subscribes by regular expression)");
 }
 
 void LcmNode::guarded(const std::string& channel, uint32_t size, const std::function<void()>& call) {

@@ -20,6 +20,11 @@ namespace bmp {
 // The URL every process uses unless told otherwise. The 4 MiB receive buffer keeps 640x480 frames from
 // being dropped by the kernel.
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+// LCM subscribes by regular expression and keeps channel names to 63 bytes: a channel name (from a
+// configuration or the command line) must be 1-63 of letters, digits and _ - . / : , or this throws an
+// LcmError naming it. Another name crashed the subscribing process (LCM made no subscription).
+void checkChannelName(const std::string& channel);
+
 inline constexpr long kDefaultReceiveBufferBytes = 4194304;  // the size in kDefaultLcmUrl (a test checks)
 
 // --lcm-url if given, else $LCM_DEFAULT_URL, else kDefaultLcmUrl; then withReceiveBuffer.
@@ -64,9 +69,9 @@ class LcmNode {
   // Calls handler for each message on channel that decodes as Msg.
   template <typename Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&, const ReceivedInfo&)> handler) {
+    checkChannelName(channel);
     auto sub = std::make_unique<Subscriber<Msg>>(this, std::move(handler));
-    lcm::Subscription* s = lcm_.subscribe(channel, &Subscriber<Msg>::onMessage, sub.get());
-    s->setQueueCapacity(queue_capacity_);
+    lcm_.subscribe(channel, &Subscriber<Msg>::onMessage, sub.get())->setQueueCapacity(queue_capacity_);
     subscribers_.push_back(std::move(sub));
   }
 
