@@ -18,8 +18,9 @@ std::string number(double v) {
 // Each impossible value named by its key and file: a principal point outside the image (cx: 5000 for a
 // 640-wide one) still tracks, and gives a trajectory metres off without a word.
 void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
-  c.check(k.width > 0, "width", "must be positive, got " + std::to_string(k.width));
-  c.check(k.height > 0, "height", "must be positive, got " + std::to_string(k.height));
+  const std::string sides = "must be 1 to " + std::to_string(kMaxImageSide) + " pixels, got ";
+  c.check(k.width > 0 && k.width <= kMaxImageSide, "width", sides + std::to_string(k.width));
+  c.check(k.height > 0 && k.height <= kMaxImageSide, "height", sides + std::to_string(k.height));
   // NaN fails every comparison, so !(v > 0) refuses it too.
   for (const auto& [key, v] :
        {std::pair<const char*, double>{"fx", k.fx}, {"fy", k.fy}, {"depth_scale", k.depth_scale}})

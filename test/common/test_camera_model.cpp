@@ -116,6 +116,9 @@ TEST(CameraConfig, RejectsImpossibleIntrinsicsNamingFileAndKey) {
                                                      {"fx: 500", "fx: .nan"},
                                                      {"fy: 500", "fy: 0"},
                                                      {"width: 640", "width: 0"},
+                                                     // start-up walked its border for minutes, or forever
+                                                     {"width: 640", "width: 2147483647"},
+                                                     {"height: 480", "height: 8193"},
                                                      {"depth_scale: 5000", "depth_scale: -5"},
                                                      {"distortion: [0, 0", "distortion: [1e300, 0"}};
   for (const auto& [from, to] : bad) {

@@ -21,6 +21,9 @@ struct CameraIntrinsics {
 // The largest |coefficient| accepted in the distortion model: real lenses stay within a few units (wide
 // angles included); under much larger ones undistortion diverges to infinity.
 constexpr double kMaxDistortionCoefficient = 10.0;
+// The largest image side we accept (a camera file's or a frame's): larger is a mistake, not a camera we
+// support, and would overflow pixel arithmetic (undistortionProblem walks the border).
+inline constexpr int kMaxImageSide = 8192;
 
 // "" when the lens distortion can be undone over the whole image (tested along its border, where the
 // distortion is largest); else which pixel it cannot and why. Expects finite intrinsics with fx, fy > 0.

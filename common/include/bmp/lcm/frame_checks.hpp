@@ -9,12 +9,10 @@
 
 #include <bmp/rgbd_frame_t.hpp>
 
+#include "bmp/common/camera_model.hpp"
 #include "bmp/lcm/camera_pin.hpp"
 
 namespace bmp {
-
-// The largest image side we accept: larger is another publisher's mistake, not a camera we support.
-inline constexpr int kMaxImageSide = 8192;
 
 // seq and utime beyond this (2^62: 146 000 years of microseconds) are another publisher's, and keeping
 // them out keeps every difference of two of them free of overflow.
