@@ -16,9 +16,7 @@ SelectedSource::SelectedSource(std::unique_ptr<FrameSource> inner, FrameSelectio
 }
 
 int64_t SelectedSource::size() const {
-  const int64_t total = inner_->size();
-  const int64_t end = selection_.end < 0 ? total : std::min(total, selection_.end);
-  return end <= selection_.start ? 0 : (end - selection_.start + selection_.every - 1) / selection_.every;
+  return selectedCount(selection_, inner_->size());
 }
 
 std::optional<CapturedFrame> SelectedSource::next() {

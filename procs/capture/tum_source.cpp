@@ -34,11 +34,13 @@ bool TumSource::inPlayedRange(double stamp) const {
   return (start == 0 || stamp >= first_stamp(start)) && (end == total || stamp < first_stamp(end));
 }
 
+int64_t selectedCount(const FrameSelection& selection, int64_t total) {
+  const int64_t end = selection.end < 0 ? total : std::min(total, selection.end);
+  return end <= selection.start ? 0 : (end - selection.start - 1) / selection.every + 1;
+}
+
 int64_t TumSource::size() const {
-  const auto total = static_cast<int64_t>(index_.frames.size());
-  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
-  if (end <= options_.selection.start) return 0;
-  return (end - options_.selection.start + options_.selection.every - 1) / options_.selection.every;
+  return selectedCount(options_.selection, static_cast<int64_t>(index_.frames.size()));
 }
 
 void TumSource::skip(int64_t& counter, const std::string& reason) {
@@ -99,7 +101,7 @@ std::optional<CapturedFrame> TumSource::next() {
   const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
   while (cursor_ < end) {
     const int64_t i = cursor_;
-    cursor_ += options_.selection.every;
+    cursor_ = options_.selection.every >= end - cursor_ ? end : cursor_ + options_.selection.every;
     const FramePair& pair = index_.frames[static_cast<std::size_t>(i)];
     CapturedFrame frame;
     frame.index = i;

@@ -20,6 +20,10 @@ struct FrameSelection {
   int64_t every = 1;  // play every n-th frame
 };
 
+// How many of frames [0, total) the selection plays; free of overflow for any start >= 0 and every >= 1
+// (--every 9223372036854775807 read past the end of the frame list).
+int64_t selectedCount(const FrameSelection& selection, int64_t total);
+
 struct TumSourceOptions {
   FrameSelection selection;
   VerifyMode verify = VerifyMode::kHeader;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -169,6 +170,28 @@ TEST(TumSequence, MissingFilesAreCountedForThePlayedFramesOnly) {
   EXPECT_EQ(missing({60, -1, 1}), 5);
   EXPECT_EQ(missing({0, -1, 1}), 6);
   EXPECT_EQ(missing({300, 400, 1}), 0);
+}
+
+// Every n-th frame for any n: a step past the end ends the play (9223372036854775807 wrapped the cursor and
+// read past the end of the frame list).
+TEST(TumSequence, AnyStepPlaysTheFramesItSelects) {
+  const SequenceIndex index = indexSequence(test::bonnDir());
+  const auto total = static_cast<int64_t>(index.frames.size());
+  for (const FrameSelection& selection : {FrameSelection{1, -1, INT64_MAX}, FrameSelection{0, -1, total},
+                                          FrameSelection{5, 12, 3}, FrameSelection{3, -1, INT64_MAX - 2}}) {
+    TumSourceOptions options;
+    options.selection = selection;
+    TumSource source(index, bonnCamera(), options);
+    std::vector<int64_t> played;
+    while (auto f = source.next()) played.push_back(f->index);
+    EXPECT_EQ(static_cast<int64_t>(played.size()), source.size()) << selection.every;
+    ASSERT_FALSE(played.empty());
+    EXPECT_EQ(played.front(), selection.start);
+  }
+  EXPECT_EQ(selectedCount({5, 12, 3}, total), 3);  // 5, 8, 11
+  EXPECT_EQ(selectedCount({1, -1, INT64_MAX}, total), 1);
+  EXPECT_EQ(selectedCount({0, -1, 1}, total), total);
+  EXPECT_EQ(selectedCount({total, -1, 1}, total), 0);
 }
 
 TEST_F(DamagedFolder, IntactFolderPlaysEveryFrameAsFileBytes) {
