@@ -217,9 +217,12 @@ cv::Mat decodeImage(const EncodedImage& image) {
       throw ImageError(std::string(toString(image.encoding)) + " header says " + std::to_string(width) + "x" +
                        std::to_string(height) + ", declared " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " (not decoded)");
-    const int flags = image.pixel_format == PixelFormat::kBgr8    ? cv::IMREAD_COLOR
-                      : image.pixel_format == PixelFormat::kMono8 ? cv::IMREAD_GRAYSCALE
-                                                                  : cv::IMREAD_UNCHANGED;
+    // A JPEG's EXIF orientation is ignored: turned, the colour image would no longer lie over the depth
+    // image (or be refused for its size, with no word of why). IMREAD_UNCHANGED ignores it already.
+    const int flags =
+        image.pixel_format == PixelFormat::kBgr8    ? cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION
+        : image.pixel_format == PixelFormat::kMono8 ? cv::IMREAD_GRAYSCALE | cv::IMREAD_IGNORE_ORIENTATION
+                                                    : cv::IMREAD_UNCHANGED;
     try {
       mat = cv::imdecode(
           cv::Mat(1, static_cast<int>(image.data.size()), CV_8UC1, const_cast<uint8_t*>(image.data.data())),

@@ -71,6 +71,26 @@ TEST(ImageCodec, RawAndPngRoundTrip) {
   EXPECT_THROW(decodeImage(garbage), ImageError);
 }
 
+// A JPEG whose EXIF says to turn it 180 degrees: decoded as stored, so colour still lies over depth (OpenCV
+// turned it by default, silently, the size unchanged).
+TEST(ImageCodec, AJpegsExifOrientationIsIgnored) {
+  cv::Mat image(48, 64, CV_8UC3, cv::Scalar(0, 0, 0));
+  image(cv::Rect(0, 0, 16, 12)).setTo(cv::Scalar(255, 255, 255));  // a white top-left corner
+  EncodedImage jpeg = encodeImage(image, ImageEncoding::kJpeg);
+  // APP1 "Exif", big-endian TIFF, one IFD entry: Orientation (0x0112), SHORT, 1, value 3 (turned 180).
+  const std::vector<uint8_t> app1 = {0xFF, 0xE1, 0x00, 0x22, 'E',  'x',  'i',  'f',  0,    0,    'M',  'M',
+                                     0x00, 0x2A, 0x00, 0x00, 0x00, 0x08, 0x00, 0x01, 0x01, 0x12, 0x00, 0x03,
+                                     0x00, 0x00, 0x00, 0x01, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00};
+  jpeg.data.insert(jpeg.data.begin() + 2, app1.begin(), app1.end());  // after SOI
+  const cv::Mat decoded = decodeImage(jpeg);
+  ASSERT_EQ(decoded.size(), image.size());
+  EXPECT_GT(decoded.at<cv::Vec3b>(2, 2)[0], 200) << "the white corner is still top left";
+  EXPECT_LT(decoded.at<cv::Vec3b>(45, 61)[0], 50);
+  // Grey too.
+  jpeg.pixel_format = PixelFormat::kMono8;
+  EXPECT_GT(decodeImage(jpeg).at<uint8_t>(2, 2), 200);
+}
+
 // decodeImage's ImageError message, or "decoded" (any other exception fails the test).
 std::string decodeError(const EncodedImage& image) {
   try {
