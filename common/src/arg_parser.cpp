@@ -1,5 +1,7 @@
 #include "bmp/common/arg_parser.hpp"
 
+#include <cmath>
+
 #include <cstdlib>
 #include <sstream>
 
@@ -74,8 +76,11 @@ double ArgParser::number(const std::string& name) const {
   const std::string text = value(name);
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
+  // inf and nan are numbers to strtod, but no option's: --speed inf played as fast as it could.
   if (text.empty() || *end != '\0')
     throw ArgError(program_ + ": --" + name + " must be a number, got '" + text + "'");
+  if (!std::isfinite(v))
+    throw ArgError(program_ + ": --" + name + " must be a finite number, got '" + text + "'");
   return v;
 }
 

@@ -1,6 +1,9 @@
 #include "bmp/common/config.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -61,11 +64,22 @@ T convert(const YAML::Node& node, const std::string& origin, const std::string& 
   } else {
     if (!node.IsScalar()) throw fail();
   }
+  T value;
   try {
-    return node.as<T>();
+    value = node.as<T>();
   } catch (const YAML::Exception&) {
     throw fail();
   }
+  // .inf and .nan are YAML numbers, but no setting's: a timeout of .inf waited forever without a word.
+  bool finite = true;
+  if constexpr (std::is_same_v<T, double>) finite = std::isfinite(value);
+  if constexpr (std::is_same_v<T, std::vector<double>>)
+    finite = std::all_of(value.begin(), value.end(), [](double v) { return std::isfinite(v); });
+  if (!finite)
+    throw ConfigError(
+        origin + ": key '" + path + "' must hold finite numbers, got " +
+        (node.IsScalar() ? "'" + node.Scalar() + "'" : std::string("a list with one that is not")));
+  return value;
 }
 
 void collectUnused(const YAML::Node& node, const std::string& prefix, const std::set<std::string>& used,
@@ -82,21 +96,37 @@ void collectUnused(const YAML::Node& node, const std::string& prefix, const std:
   }
 }
 
-// A key written twice in one mapping: yaml-cpp keeps both and reads the first, so the value a user edited
-// last (lower down) would be ignored without a word.
-void refuseRepeatedKeys(const YAML::Node& node, const std::string& prefix, const std::string& origin) {
+// More nodes than any configuration of ours has, by far: YAML aliases can make a file of a few hundred
+// bytes a tree of billions of nodes (each alias walked again), which took minutes to check.
+constexpr long kMaxConfigNodes = 100000;
+
+// Keys the reader would never find, refused naming file, line and key:
+//   - a key written twice in one mapping: yaml-cpp keeps both and reads the first, so the value a user
+//     edited last (lower down) would be ignored without a word;
+//   - a key with a dot: keys are looked up section by section, so 'capture.speed: 100' at the top was
+//     neither read nor reported unknown.
+void refuseUnreadableKeys(const YAML::Node& node, const std::string& prefix, const std::string& origin,
+                          long& nodes) {
+  if (++nodes > kMaxConfigNodes)
+    throw ConfigError(origin + ": more than " + std::to_string(kMaxConfigNodes) +
+                      " values (YAML aliases nested in each other?)");
   if (node.IsSequence()) {
-    for (const auto& item : node) refuseRepeatedKeys(item, prefix, origin);
+    for (const auto& item : node) refuseUnreadableKeys(item, prefix, origin, nodes);
     return;
   }
   if (!node.IsMap()) return;
   std::set<std::string> seen;
   for (const auto& kv : node) {
-    const std::string path = prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar();
-    if (!seen.insert(kv.first.Scalar()).second)
-      throw ConfigError(origin + ":" + std::to_string(kv.first.Mark().line + 1) + ": key '" + path +
-                        "' is given twice (the first would be used and this one ignored)");
-    refuseRepeatedKeys(kv.second, path, origin);
+    const std::string& key = kv.first.Scalar();
+    const std::string path = prefix.empty() ? key : prefix + "." + key;
+    const std::string where =
+        origin + ":" + std::to_string(kv.first.Mark().line + 1) + ": key '" + path + "'";
+    if (!seen.insert(key).second)
+      throw ConfigError(where + " is given twice (the first would be used and this one ignored)");
+    if (key.find('.') != std::string::npos)
+      throw ConfigError(where +
+                        " has a dot in it: write sections as nested keys (e.g. 'capture: {speed: 2}')");
+    refuseUnreadableKeys(kv.second, path, origin, nodes);
   }
 }
 
@@ -106,10 +136,13 @@ Config::Config(std::shared_ptr<State> state, std::shared_ptr<YAML::Node> node, s
     : state_(std::move(state)), node_(std::move(node)), prefix_(std::move(prefix)) {}
 
 Config Config::fromFile(const std::string& path) {
+  // A folder opens as a stream that reads nothing: every value would silently be its default.
+  if (std::filesystem::is_directory(path)) throw ConfigError(path + ": a folder, not a configuration file");
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open configuration file");
   std::stringstream text;
   text << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read configuration file");
   return fromString(text.str(), path);
 }
 
@@ -123,7 +156,8 @@ Config Config::fromString(const std::string& yaml, const std::string& origin) {
   }
   if (state->root.IsNull()) state->root = YAML::Node(YAML::NodeType::Map);
   if (!state->root.IsMap()) throw ConfigError(origin + ": the top level must be a mapping of keys");
-  refuseRepeatedKeys(state->root, "", origin);
+  long nodes = 0;
+  refuseUnreadableKeys(state->root, "", origin, nodes);
   auto node = std::make_shared<YAML::Node>(state->root);
   return Config(state, node, "");
 }

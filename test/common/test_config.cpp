@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "bmp/common/config.hpp"
 #include "shared_data.hpp"
@@ -73,6 +74,59 @@ TEST(Config, WrongTypeIsAnErrorNamingKeyAndValue) {
   }
   EXPECT_THROW(Config::fromString("l: 3\n", "f").get<std::vector<int>>("l", {}), ConfigError);
   EXPECT_THROW(Config::fromString("m: {a: 1}\n", "f").get<std::string>("m", ""), ConfigError);
+}
+
+// .inf and .nan are YAML numbers but no setting's (a lockstep timeout of .inf waited forever in silence); a
+// key with a dot is never looked up (sections are nested keys), so it was neither read nor called unknown.
+TEST(Config, NonFiniteNumbersAndDottedKeysAreErrorsNamingTheKey) {
+  for (const char* value : {".inf", "-.inf", ".nan"}) {
+    const Config c =
+        Config::fromString(std::string("s:\n  t: ") + value + "\n  l: [1, " + value + "]\n", "f.yaml");
+    try {
+      c.section("s").get<double>("t", 1.0);
+      ADD_FAILURE() << value << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("f.yaml: key 's.t' must hold finite numbers"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_THROW(c.section("s").get<std::vector<double>>("l", {}), ConfigError) << value;
+  }
+  try {
+    Config::fromString("capture.speed: 100\n", "run.yaml");
+    FAIL() << "a dotted key accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("run.yaml:1: key 'capture.speed' has a dot in it"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A file of a few hundred bytes whose aliases nest ten deep is a tree of 10^8 values: refused at once, not
+// walked for minutes.
+TEST(Config, AliasesNestedIntoAHugeTreeAreRefused) {
+  std::string yaml = "a0: &a0 [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]\n";
+  for (int i = 1; i <= 8; ++i) {
+    yaml += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) yaml += (k ? ", *a" : "*a") + std::to_string(i - 1);
+    yaml += "]\n";
+  }
+  try {
+    Config::fromString(yaml, "alias.yaml");
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("alias.yaml: more than"), std::string::npos) << e.what();
+  }
+}
+
+// A folder given as the configuration read as an empty file: every value silently its default.
+TEST(Config, AFolderIsNotAConfigurationFile) {
+  try {
+    Config::fromFile(test::sourceDir() + "/config");
+    FAIL() << "a folder read as a configuration";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("a folder, not a configuration file"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Config, MissingFileAndBadYamlNameTheFile) {
