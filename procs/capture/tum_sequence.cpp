@@ -30,6 +30,11 @@ std::vector<ListEntry> readListFile(const std::string& path, std::string* cut_la
             "1305031102.175304. For nanoseconds: awk '/^#/ {print; next} {printf \"%.9f %s\\n\", "
             "$1 / 1e9, $2}' " +
             fs::path(path).filename().string() + " > seconds.txt");
+      // Frames carry their stamps as microseconds since 1970, which every consumer refuses below 0.
+      if (record.stamp < 0)
+        throw SequenceError(
+            path + ":" + std::to_string(record.line) + ": the stamp in '" + record.text +
+            "' is negative; TUM lists give seconds since 1970 (add an offset to every stamp)");
       entries.push_back({record.stamp, std::move(record.fields[0])});
     }
   } catch (const TumTextError& e) {

@@ -121,6 +121,16 @@ TEST(TumSequence, MalformedListLineNamesFileAndLine) {
   }
   std::ofstream(dir / "depth.txt") << "1.0\n";
   EXPECT_THROW(readListFile((dir / "depth.txt").string()), SequenceError);
+  // Relative stamps: each frame would be refused downstream, one by one.
+  std::ofstream(dir / "rgb.txt") << "0.5 rgb/a.png\n-10.12574 rgb/b.png\n";
+  try {
+    readListFile((dir / "rgb.txt").string());
+    ADD_FAILURE() << "a negative stamp accepted";
+  } catch (const SequenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("rgb.txt:2: the stamp in '-10.12574 rgb/b.png' is negative"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // A folder of five real Bonn frames, then damaged in the ways real folders are.
