@@ -35,7 +35,12 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, Output output, const s
 
   const pid_t parent = ::getpid();
   pid_ = ::fork();
-  if (pid_ < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid_ < 0) {
+    const std::string why = std::strerror(errno);
+    if (out_fd >= 0) ::close(out_fd);  // the pipe's write end, or the log file
+    if (pipe_fds[0] >= 0) ::close(pipe_fds[0]);
+    throw std::runtime_error("fork: " + why);
+  }
   if (pid_ == 0) {
     // If the parent dies (a launcher killed with SIGKILL), the child is asked to stop as by Ctrl-C and
     // writes what it owes, instead of running on as an orphan. And a closed output pipe must not kill it
