@@ -1,6 +1,7 @@
 #include "bmp/common/tum_trajectory.hpp"
 
 #include "bmp/common/atomic_file.hpp"
+#include "bmp/common/number_format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,10 +50,10 @@ Trajectory readTumTrajectory(const std::string& path) {
 std::string formatTumLine(const StampedPose& pose) {
   const Eigen::Vector3d t = pose.T_world_cam.translation();
   const Eigen::Quaterniond q(pose.T_world_cam.linear());
-  char buffer[256];
-  std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f", pose.stamp, t.x(), t.y(),
-                t.z(), q.x(), q.y(), q.z(), q.w());
-  return buffer;
+  std::string line = formatFixed(pose.stamp, 6, "nan");
+  for (const double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()})
+    line += " " + formatFixed(v, 7, "nan");
+  return line;
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bmp/common/number_format.hpp"
 #include "bmp/common/tum_trajectory.hpp"
 #include "shared_data.hpp"
 
@@ -30,6 +31,20 @@ TEST(TumTrajectory, WriteReadRoundTrip) {
     EXPECT_NEAR(r[i].stamp, t[i].stamp, 1e-6);
     EXPECT_LT((r[i].T_world_cam.matrix() - t[i].T_world_cam.matrix()).norm(), 1e-6);
   }
+}
+
+// A position of any size is written whole and reads back as itself (a fixed buffer cut a 1e300 line short,
+// and the file could not be read again).
+TEST(TumTrajectory, AHugePositionIsWrittenWhole) {
+  Trajectory t{{1000.5, makeSE3({1e300, -2.5, 1e20}, Eigen::Quaterniond::Identity())}};
+  const auto path = test::scratchDir("tum_traj_huge") / "t.txt";
+  writeTumTrajectory(path.string(), t);
+  const Trajectory r = readTumTrajectory(path.string());
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_DOUBLE_EQ(r[0].T_world_cam.translation().x(), 1e300);
+  EXPECT_DOUBLE_EQ(r[0].T_world_cam.translation().z(), 1e20);
+  EXPECT_EQ(formatFixed(1e100, 3, "n/a").size(), 105u);  // 101 digits, the point, 3 decimals
+  EXPECT_EQ(formatFixed(-2.5, 1, "n/a"), "-2.5");
 }
 
 // Each appended pose is on disk at once (a killed writer leaves them all), and a final write replaces the
