@@ -82,7 +82,8 @@ std::vector<ObjectBox> movedForAge(std::vector<ObjectBox> newest, const std::vec
   if (dt_s <= 0.0 || age_s <= 0.0) return newest;
   const auto scale = static_cast<float>(age_s / dt_s);
   for (ObjectBox& b : newest) {
-    if (b.level == DynamicLevel::kLow) continue;
+    // Low boxes too: a monitor does not move, but it moves in the image while the camera turns, and its
+    // veto must stay on it.
     const ObjectBox* partner = nullptr;
     double best = min_iou;
     for (const ObjectBox& e : before) {

@@ -60,7 +60,7 @@ std::vector<float> movedShareInBoxes(const std::vector<cv::KeyPoint>& keys,
 // meanwhile. Low-dynamic boxes stay as they were: they do not move, and a grown one would hide a person.
 std::vector<ObjectBox> grownForAge(std::vector<ObjectBox> boxes, double age_s, double growth_px_per_s);
 
-// The newest answer's high and medium boxes moved on by age_s at the image speed each showed since the
+// The newest answer's boxes (of every level) moved on by age_s at the image speed each showed since the
 // answer before it (dt_s earlier): each box takes the shift of the earlier box of its class that overlaps
 // it most (intersection over union at least min_iou); a box with no such partner stays where it was.
 // A person crossing the view is where the box says, not only somewhere in a box grown to every side.

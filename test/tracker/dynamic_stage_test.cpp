@@ -143,10 +143,12 @@ TEST(DynamicRegions, StaleBoxesGrowWithTheirAgeButLowBoxesStay) {
 
 // Real time: the newest boxes (0.1 s after the answer before) stand in for a frame 0.05 s after them. The
 // person walked 20 px right in those 0.1 s, so their box goes on 10 px more; the chair of another class at
-// the person's old place gives no speed, the box with no partner stays, the monitor (low) never moves.
+// the person's old place gives no speed, the box with no partner stays, and so does the monitor (low) that
+// stood still in the image.
 TEST(DynamicRegions, StaleBoxesMoveOnAtTheSpeedTheyShowed) {
   const std::vector<ObjectBox> before = {box(80, 100, 80, 200, DynamicLevel::kHigh),
-                                         box(500, 300, 40, 40, DynamicLevel::kHigh)};
+                                         box(500, 300, 40, 40, DynamicLevel::kHigh),
+                                         box(200, 150, 50, 40, DynamicLevel::kLow)};
   std::vector<ObjectBox> newest = {box(100, 104, 80, 200, DynamicLevel::kHigh),
                                    box(300, 100, 60, 60, DynamicLevel::kHigh),
                                    box(200, 150, 50, 40, DynamicLevel::kLow)};
@@ -161,6 +163,21 @@ TEST(DynamicRegions, StaleBoxesMoveOnAtTheSpeedTheyShowed) {
   const std::vector<ObjectBox> far = {box(400, 100, 80, 200, DynamicLevel::kHigh)};
   EXPECT_EQ(movedForAge(newest, far, 0.1, 0.05, 0.3)[0].box, newest[0].box);
   EXPECT_EQ(movedForAge(newest, before, 0.0, 0.05, 0.3)[0].box, newest[0].box) << "no speed from no time";
+}
+
+// The camera turns: everything, the monitor (low) with the person, moved 30 px left in the image in the
+// 0.1 s between the answers. The stale low box moves on with the image, or its veto would fall on the
+// person's pixels where the monitor was and leave the monitor's new place open.
+TEST(DynamicRegions, AStaleLowBoxMovesWithTheImageWhenTheCameraTurns) {
+  std::vector<ObjectBox> before = {box(330, 100, 80, 200, DynamicLevel::kHigh),
+                                   box(230, 150, 100, 60, DynamicLevel::kLow)};
+  std::vector<ObjectBox> newest = {box(300, 100, 80, 200, DynamicLevel::kHigh),
+                                   box(200, 150, 100, 60, DynamicLevel::kLow)};
+  before[1].class_id = newest[1].class_id = 62;  // a tv monitor
+  const auto moved = movedForAge(newest, before, 0.1, 0.1, 0.3);
+  EXPECT_FLOAT_EQ(moved[0].box.x, 270.0f);
+  EXPECT_FLOAT_EQ(moved[1].box.x, 170.0f);
+  EXPECT_FLOAT_EQ(moved[1].box.width, 100.0f) << "moved, not grown";
 }
 
 // The whole stand-in rule, as bmp-tracker and bmp-bench-tracker --box-lag apply it: the newest answer, moved
