@@ -72,15 +72,20 @@ std::string ArgParser::value(const std::string& name) const {
   return opt.given ? opt.value : opt.default_value;
 }
 
-double ArgParser::number(const std::string& name) const {
+double ArgParser::anyNumber(const std::string& name) const {
   const std::string text = value(name);
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  // inf and nan are numbers to strtod, but no option's: --speed inf played as fast as it could.
   if (text.empty() || *end != '\0')
     throw ArgError(program_ + ": --" + name + " must be a number, got '" + text + "'");
+  return v;
+}
+
+double ArgParser::number(const std::string& name) const {
+  const double v = anyNumber(name);
+  // inf and nan are numbers to strtod, but no option's: --speed inf played as fast as it could.
   if (!std::isfinite(v))
-    throw ArgError(program_ + ": --" + name + " must be a finite number, got '" + text + "'");
+    throw ArgError(program_ + ": --" + name + " must be a finite number, got '" + value(name) + "'");
   return v;
 }
 

@@ -27,14 +27,14 @@ std::string rangeText(T min, T max) {
 }  // namespace
 
 double numberIn(const ArgParser& args, const std::string& name, double min, double max) {
-  const double v = args.number(name);
+  const double v = args.anyNumber(name);
   // NaN fails both comparisons, so it is refused with the rest.
   if (!(std::isfinite(v) && v >= min && v <= max)) outOfRange(args, name, "a number " + rangeText(min, max));
   return v;
 }
 
 double positiveNumber(const ArgParser& args, const std::string& name) {
-  const double v = args.number(name);
+  const double v = args.anyNumber(name);
   if (!(std::isfinite(v) && v > 0)) outOfRange(args, name, "a number above 0");
   return v;
 }

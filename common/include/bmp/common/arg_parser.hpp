@@ -29,7 +29,9 @@ class ArgParser {
   bool flag(const std::string& name) const;
   bool given(const std::string& name) const;
   std::string value(const std::string& name) const;
-  double number(const std::string& name) const;  // throws ArgError naming the option
+  double number(const std::string& name) const;  // finite; throws ArgError naming the option
+  // Any number strtod reads, inf and nan too (for a range check that names the range in its error).
+  double anyNumber(const std::string& name) const;
   long long integer(const std::string& name) const;
   // The items of a comma-separated value ("a,b,,c" -> a, b, c); empty when the option is empty.
   std::vector<std::string> list(const std::string& name) const;
