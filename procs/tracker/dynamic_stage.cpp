@@ -117,6 +117,7 @@ void DynamicStage::observe(Frame& frame, const std::vector<ObjectBox>* boxes, co
   if (last && last->features)
     share = movedShareInBoxes(last->features->keys, *boxes, last->moved, options_.medium_min_moved);
   frame.box_z = boxObservation(*frame.features, *boxes, share);
+  frame.box_moving_share = std::move(share);
   if (options_.mode != DynamicMode::kBoxes) return;
   // Boxes only: a keypoint in a moving box is dynamic in this frame, with no memory.
   for (std::size_t i = 0; i < frame.box_z.size(); ++i) {
@@ -285,14 +286,17 @@ void DynamicStage::observeMovingClusters(Frame& frame, const FrameGeometry& g,
   }
 }
 
-void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const {
-  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+std::vector<float> DynamicStage::lateMovingShare(const KeyFrame& kf,
+                                                 const std::vector<ObjectBox>& boxes) const {
   // The keyframe's own verdicts are the evidence that a chair moves (the frame after it would have taken
   // them): without them a late answer would undo what its stand-in boxes' observation had counted.
-  std::vector<float> share;
-  if (kf.moved.size() == kf.features->keys.size())
-    share = movedShareInBoxes(kf.features->keys, boxes, kf.moved, options_.medium_min_moved);
-  const std::vector<int8_t> z = boxObservation(*kf.features, boxes, share);
+  if (kf.moved.size() != kf.features->keys.size()) return {};
+  return movedShareInBoxes(kf.features->keys, boxes, kf.moved, options_.medium_min_moved);
+}
+
+void DynamicStage::observeLate(KeyFrame& kf, const std::vector<ObjectBox>& boxes) const {
+  if (!enabled() || options_.mode == DynamicMode::kBoxes) return;
+  const std::vector<int8_t> z = boxObservation(*kf.features, boxes, lateMovingShare(kf, boxes));
   // Observed with stand-in boxes, the frame's probabilities hold their observation: the frame's own
   // answer takes its place (withdrawn, then applied), so the frame counts once.
   const bool replace = kf.stand_in_z.size() == z.size();
@@ -325,12 +329,12 @@ void markAtDepth(const cv::Rect& box, double near_m, double far_m, const cv::Mat
 }  // namespace
 
 cv::Mat DynamicStage::mask(const Features& f, const FrameGeometry& g, const std::vector<uint8_t>& dynamic,
-                           const std::vector<ObjectBox>* boxes, const cv::Mat& depth,
-                           double depth_scale) const {
+                           const std::vector<ObjectBox>* boxes, const std::vector<float>& moving_share,
+                           const cv::Mat& depth, double depth_scale) const {
   cv::Mat m = cv::Mat::zeros(depth.size(), CV_8UC1);
   if (!enabled()) return m;
   const std::vector<MovingRegion> regions =
-      boxes ? movingRegions(f, *boxes, {}) : std::vector<MovingRegion>{};
+      boxes ? movingRegions(f, *boxes, moving_share) : std::vector<MovingRegion>{};
   const cv::Rect image(0, 0, m.cols, m.rows);
   for (const MovingRegion& r : regions) {
     if (r.far_m <= 0)

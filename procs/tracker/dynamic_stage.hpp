@@ -60,10 +60,15 @@ class DynamicStage {
   // The per-pixel dynamic mask of a frame (CV_8UC1, 255 dynamic): its moving regions (by depth when
   // refined), a disk around every dynamic keypoint and, with kGeometric, each cluster of dynamic keypoints
   // as a region: its bounding box, grown by the disk's radius, at its depths (a mover no detector knows has
-  // only some of its keypoints judged; the mapper must leave out the rest of it too). depth: CV_16UC1 raw,
-  // scaled by depth_scale, or CV_32FC1 metres.
+  // only some of its keypoints judged; the mapper must leave out the rest of it too). moving_share: each
+  // box's keypoints seen moving, as the frame's observation counted them (Frame::box_moving_share, or
+  // lateMovingShare), so a chair pushed along is masked as it was kept out. depth: CV_16UC1 raw, scaled by
+  // depth_scale, or CV_32FC1 metres.
   cv::Mat mask(const Features& f, const FrameGeometry& g, const std::vector<uint8_t>& dynamic,
-               const std::vector<ObjectBox>* boxes, const cv::Mat& depth, double depth_scale) const;
+               const std::vector<ObjectBox>* boxes, const std::vector<float>& moving_share,
+               const cv::Mat& depth, double depth_scale) const;
+  // A late answer's boxes' evidence of moving: the keyframe's own geometric verdicts in each.
+  std::vector<float> lateMovingShare(const KeyFrame& kf, const std::vector<ObjectBox>& boxes) const;
   const MovingProbabilityOptions& bayes() const { return bayes_; }
 
  private:

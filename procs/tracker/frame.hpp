@@ -129,6 +129,8 @@ class Frame {
   // 0 z = s; empty when no boxes came for the frame), P(dynamic), and whether that is over the threshold.
   // A dynamic keypoint keeps its match (its probability travels on) but takes no part in the pose.
   std::vector<int8_t> box_z;
+  std::vector<float>
+      box_moving_share;  // per box: its keypoints seen moving last frame (medium boxes' evidence)
   bool box_z_stand_in =
       false;  // any box_z comes from stand-in boxes (real time: the frame's own answer is late)
   std::vector<float> moving;

@@ -137,8 +137,8 @@ TrackResult Tracker::track(const TrackerInput& input) {
     if (result.new_keyframe) {
       const ScopedAccumulator timer(dynamic_ms_);
       result.dynamic_mask =
-          dynamic_.mask(*frame.features, *geometry_, frame.dynamic, boxes ? &*boxes : nullptr, input.depth,
-                        geometry_->camera.intrinsics().depth_scale);
+          dynamic_.mask(*frame.features, *geometry_, frame.dynamic, boxes ? &*boxes : nullptr,
+                        frame.box_moving_share, input.depth, geometry_->camera.intrinsics().depth_scale);
     }
     result.dynamic_ms = dynamic_ms_;
   }

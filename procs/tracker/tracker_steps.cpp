@@ -160,7 +160,8 @@ cv::Mat Tracker::keyframeMask(int64_t id, const std::vector<ObjectBox>* boxes, c
   const auto lock = map_.lockForTracking();
   for (const auto& kf : map_.keyFrames())
     if (kf->id == id)
-      return dynamic_.mask(*kf->features, *geometry_, kf->dynamic, boxes, depth,
+      return dynamic_.mask(*kf->features, *geometry_, kf->dynamic, boxes,
+                           boxes ? dynamic_.lateMovingShare(*kf, *boxes) : std::vector<float>{}, depth,
                            geometry_->camera.intrinsics().depth_scale);
   return {};
 }

@@ -40,10 +40,12 @@ class KeyframeMask : public ::testing::Test {
       if (kMover.contains(f.keys[k].pt) && on_mover++ % 3 == 0) dynamic_[k] = 1;
     ASSERT_GT(on_mover, 30);
   }
-  cv::Mat mask(DynamicMode mode, const std::vector<ObjectBox>* boxes) const {
+  cv::Mat mask(DynamicMode mode, const std::vector<ObjectBox>* boxes,
+               const std::vector<float>& moving_share = {}) const {
     DynamicOptions o;
     o.mode = mode;
-    return DynamicStage(o, rig_.config.pose).mask(*frame_->features, rig_.g, dynamic_, boxes, depth_, 1.0);
+    return DynamicStage(o, rig_.config.pose)
+        .mask(*frame_->features, rig_.g, dynamic_, boxes, moving_share, depth_, 1.0);
   }
 
   test_rig::RoomRig rig_;
@@ -74,6 +76,16 @@ TEST_F(KeyframeMask, APersonsRegionIsNotWidenedByItsCluster) {
   EXPECT_GT(maskShares(with).mover, 0.99);
   // Beyond the disks around the keypoints judged dynamic near its edge, the cupboard stays in the map.
   EXPECT_EQ(cv::countNonZero(with(cv::Rect(cupboard.x + 13, cupboard.y, 27, cupboard.height))), 0);
+}
+
+// The mover is a chair someone pushes: its keypoints were seen moving, so the frame kept them out, and the
+// mask must cover it as well (given no evidence, the mask left the whole box out, and the mapper put the
+// chair where it passed). Standing still, it is not masked beyond its judged keypoints' disks.
+TEST_F(KeyframeMask, AChairSeenMovingIsMaskedAsItWasKeptOut) {
+  const std::vector<ObjectBox> chair{{cv::Rect2f(kMover), DynamicLevel::kMedium, 56, 0.8f}};
+  EXPECT_GT(maskShares(mask(DynamicMode::kDepth, &chair, {1.0f})).mover, 0.95);
+  EXPECT_LT(maskShares(mask(DynamicMode::kDepth, &chair, {0.0f})).mover, 0.6);
+  EXPECT_LT(maskShares(mask(DynamicMode::kDepth, &chair, {1.0f})).room, 0.01);
 }
 
 }  // namespace
