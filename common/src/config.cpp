@@ -55,6 +55,7 @@ T convert(const YAML::Node& node, const std::string& origin, const std::string& 
   const auto fail = [&]() -> ConfigError {
     std::string got = node.IsScalar()     ? "'" + node.Scalar() + "'"
                       : node.IsSequence() ? "a list"
+                      : node.IsNull()     ? "nothing (the key has no value)"
                                           : "a mapping";
     return ConfigError(origin + ": key '" + path + "' must be a " + typeName<T>() + ", got " + got);
   };

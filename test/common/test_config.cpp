@@ -74,6 +74,12 @@ TEST(Config, WrongTypeIsAnErrorNamingKeyAndValue) {
   }
   EXPECT_THROW(Config::fromString("l: 3\n", "f").get<std::vector<int>>("l", {}), ConfigError);
   EXPECT_THROW(Config::fromString("m: {a: 1}\n", "f").get<std::string>("m", ""), ConfigError);
+  try {
+    Config::fromString("channel:\n", "f.yaml").get<std::string>("channel", "X");
+    FAIL() << "an empty value read";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("must be a string, got nothing"), std::string::npos) << e.what();
+  }
 }
 
 // .inf and .nan are YAML numbers but no setting's (a lockstep timeout of .inf waited forever in silence); a
