@@ -46,6 +46,12 @@ struct Rig : test_rig::RoomRig {
   }
 };
 
+DynamicOptions inMode(DynamicMode mode) {
+  DynamicOptions o;
+  o.mode = mode;
+  return o;
+}
+
 TEST(KeypointTracks, FollowTheBoxBeyondTheMotionWindowAndTheRoomInPlace) {
   const SlidingBox scene;
   ASSERT_FALSE(scene.box.empty()) << "images missing under " << test::sharedDir();
@@ -149,8 +155,7 @@ std::vector<KeptOut> run(const DynamicOptions& options, int frames, int person_u
 // the box is kept out from the second frame of motion on, and almost none of the room.
 TEST(GeometricObservation, KeepsAMoverNoDetectorKnowsOutWithinTwoFrames) {
   ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
-  DynamicOptions geometric;
-  geometric.mode = DynamicMode::kGeometric;
+  const DynamicOptions geometric = inMode(DynamicMode::kGeometric);
   const std::vector<KeptOut> r = run(geometric, 6);
   for (int i = 2; i < 6; ++i) {
     EXPECT_GE(r[i].box, 0.8) << "frame " << i;
@@ -171,8 +176,7 @@ TEST(MediumBoxes, AChairDoesNotKeepItselfMovingOnItsOwnBox) {
   const SlidingBox scene;
   ASSERT_FALSE(scene.box.empty()) << "images missing under " << test::sharedDir();
   const Rig s;
-  DynamicOptions geometric;
-  geometric.mode = DynamicMode::kGeometric;
+  const DynamicOptions geometric = inMode(DynamicMode::kGeometric);
   const DynamicStage stage(geometric, s.config.pose);
   const cv::Rect chair = scene.where(0);
   const cv::Rect2f person(chair.x - 40.0f, chair.y - 60.0f, chair.width + 80.0f, chair.height + 200.0f);
@@ -209,8 +213,7 @@ TEST(MediumBoxes, AChairDoesNotKeepItselfMovingOnItsOwnBox) {
 // ratio test fails), so this holds for part of the box: 43 % when this was written.
 TEST(PapersPrior, AKeypointKeepsItsHistoryWhenTheBoxIsMissedForAFrame) {
   ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
-  DynamicOptions paper;
-  paper.mode = DynamicMode::kPaper;
+  const DynamicOptions paper = inMode(DynamicMode::kPaper);
   const std::vector<KeptOut> r = run(paper, 4, 2);
   for (int i = 0; i < 3; ++i) EXPECT_GE(r[i].box, 0.95) << "frame " << i << ", in the box";
   EXPECT_GE(r[3].box, 0.3) << "the frame the box was missed";
@@ -227,8 +230,7 @@ TEST(GeometricObservation, MapPointsTakeTheFramesPosteriorsOnlyWhenCommitted) {
   ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
   const SlidingBox scene;
   const Rig s;
-  DynamicOptions geometric;
-  geometric.mode = DynamicMode::kGeometric;
+  const DynamicOptions geometric = inMode(DynamicMode::kGeometric);
   const DynamicStage stage(geometric, s.config.pose);
   Frame f = s.frame(scene, 0);
   int64_t id = 0;
@@ -270,8 +272,7 @@ TEST(LateBoxes, TakeThePlaceOfTheStandInsTheFrameWasObservedWith) {
   ASSERT_FALSE(SlidingBox().box.empty()) << "images missing under " << test::sharedDir();
   const SlidingBox scene;
   const Rig s;
-  DynamicOptions paper;
-  paper.mode = DynamicMode::kPaper;
+  const DynamicOptions paper = inMode(DynamicMode::kPaper);
   const DynamicStage stage(paper, s.config.pose);
   const std::vector<ObjectBox> stand_in{{cv::Rect2f(scene.where(0)), DynamicLevel::kHigh, 0, 0.9f}};
   const std::vector<ObjectBox> own;  // the detector's own answer: nothing it knows
