@@ -24,7 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::binPath;
 
-// A real-time bmp-tracker (no detector, policy latest, exits once idle) and what the test hears of it.
+// A real-time bmp-tracker (no detector, policy latest, exits once idle) and what the test hears of it. Idle
+// for 10 s: the SIGSTOP below lasts 3 s, or longer when this test is slow to send SIGCONT on a loaded
+// machine, and the idle clock runs on through it.
 class WatchedTracker {
  public:
   WatchedTracker(const fs::path& dir, const std::string& url) : dir_(dir), lcm_(url) {
@@ -34,7 +36,7 @@ class WatchedTracker {
     child_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{binPath("bmp-tracker"), "--config",
                                  test::sourceDir() + "/config/tracker.yaml", "--lcm-url", url,
-                                 "--frame-policy", "latest", "--dynamic-mode", "none", "--idle-exit", "4"},
+                                 "--frame-policy", "latest", "--dynamic-mode", "none", "--idle-exit", "10"},
         ChildProcess::Output::kFile, (dir / "tracker.log").string());
   }
   ChildProcess& child() { return *child_; }
