@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 #include <tuple>
 
 #include "bmp/common/tum_text_list.hpp"
@@ -100,7 +101,10 @@ SequenceIndex indexSequence(const std::string& dir, double max_difference) {
     auto entries = readListFile((root / list).string(), &cut);
     if (!cut.empty()) index.list_problems.push_back(cut);
     for (auto& e : entries) {
-      if (fs::is_regular_file(root / e.path)) {
+      // The error_code form: a symlink loop (or a file we may not look at) is a missing file, not an
+      // exception that ends the whole run.
+      std::error_code unreadable;
+      if (fs::is_regular_file(root / e.path, unreadable)) {
         kept.push_back(std::move(e));
       } else {
         index.missing_files.push_back({e.stamp, (root / e.path).string()});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 namespace bmp::capture {
 
@@ -50,7 +51,8 @@ void TumSource::skip(int64_t& counter, const std::string& reason) {
 }
 
 bool TumSource::load(const std::string& path, bool is_depth, EncodedImage& out) {
-  if (!std::filesystem::is_regular_file(path)) {
+  std::error_code unreadable;  // a symlink loop: missing, not an exception that ends the run
+  if (!std::filesystem::is_regular_file(path, unreadable)) {
     skip(skips_.missing_files, path + ": file does not exist");
     return false;
   }

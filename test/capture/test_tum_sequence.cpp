@@ -216,6 +216,18 @@ TEST_F(DamagedFolder, IntactFolderPlaysEveryFrameAsFileBytes) {
   EXPECT_EQ(frames[0].depth.encoding, ImageEncoding::kPng);
 }
 
+// A listed file that is a symlink to itself is skipped as missing; it ended the whole run ("Too many levels
+// of symbolic links" thrown from the check).
+TEST_F(DamagedFolder, ASymlinkLoopIsSkippedAsMissing) {
+  fs::remove(depth_files_[2]);
+  fs::create_symlink(depth_files_[2].filename(), depth_files_[2]);
+  SkipReport skips;
+  std::vector<std::string> warnings;
+  const auto frames = playAll(skips, warnings);
+  EXPECT_EQ(frames.size(), 4u);
+  EXPECT_EQ(skips.missing_files, 1);
+}
+
 TEST_F(DamagedFolder, CorruptMissingAndWrongSizeAreSkippedWithReasons) {
   // 1: corrupt PNG (a flipped bit), 2: missing depth file, 3: depth of the wrong size.
   std::vector<uint8_t> bytes = readFileBytes(depth_files_[1].string());
