@@ -30,13 +30,17 @@ bool TumSource::inPlayedRange(double stamp) const {
     return std::min(f.rgb_stamp, f.depth_stamp);
   };
   const int64_t start = options_.selection.start;
-  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
+  const int64_t end = selectedEnd(options_.selection, total);
   if (start >= end) return false;
   return (start == 0 || stamp >= first_stamp(start)) && (end == total || stamp < first_stamp(end));
 }
 
+int64_t selectedEnd(const FrameSelection& selection, int64_t total) {
+  return selection.end < 0 ? total : std::min(total, selection.end);
+}
+
 int64_t selectedCount(const FrameSelection& selection, int64_t total) {
-  const int64_t end = selection.end < 0 ? total : std::min(total, selection.end);
+  const int64_t end = selectedEnd(selection, total);
   return end <= selection.start ? 0 : (end - selection.start - 1) / selection.every + 1;
 }
 
@@ -100,7 +104,7 @@ bool TumSource::load(const std::string& path, bool is_depth, EncodedImage& out) 
 
 std::optional<CapturedFrame> TumSource::next() {
   const auto total = static_cast<int64_t>(index_.frames.size());
-  const int64_t end = options_.selection.end < 0 ? total : std::min(total, options_.selection.end);
+  const int64_t end = selectedEnd(options_.selection, total);
   while (cursor_ < end) {
     const int64_t i = cursor_;
     cursor_ = options_.selection.every >= end - cursor_ ? end : cursor_ + options_.selection.every;

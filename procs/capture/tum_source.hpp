@@ -23,6 +23,8 @@ struct FrameSelection {
 // How many of frames [0, total) the selection plays; free of overflow for any start >= 0 and every >= 1
 // (--every 9223372036854775807 read past the end of the frame list).
 int64_t selectedCount(const FrameSelection& selection, int64_t total);
+// One past the last of frames [0, total) the selection may play.
+int64_t selectedEnd(const FrameSelection& selection, int64_t total);
 
 struct TumSourceOptions {
   FrameSelection selection;

@@ -18,10 +18,10 @@ namespace {
 // ground truth can be written before the first frame.
 double tumPeriod(const SequenceIndex& index, const FrameSelection& selection) {
   const auto total = static_cast<int64_t>(index.frames.size());
-  const int64_t end = selection.end < 0 ? total : std::min(total, selection.end);
+  const int64_t end = selectedEnd(selection, total);
   if (end <= selection.start) return 1.0;
   const int64_t last = selection.start + (end - 1 - selection.start) / selection.every * selection.every;
-  const int64_t count = (last - selection.start) / selection.every + 1;
+  const int64_t count = selectedCount(selection, total);
   return loopPeriod(index.frames[static_cast<std::size_t>(selection.start)].rgb_stamp,
                     index.frames[static_cast<std::size_t>(last)].rgb_stamp, count);
 }
