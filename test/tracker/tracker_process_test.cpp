@@ -50,7 +50,8 @@ camera_t bonnCamera() {
 // A bmp-tracker child on a test-unique udpm URL, and the test's own LCM node that feeds and watches it.
 class TrackerUnderTest {
  public:
-  explicit TrackerUnderTest(const std::string& name, int slot)
+  // extra: more options for bmp-tracker, e.g. its frame policy.
+  explicit TrackerUnderTest(const std::string& name, int slot, const std::vector<std::string>& extra = {})
       : url_(test::uniqueLcmUrl(slot)),
         dir_(test::scratchDir(name)),
         node_(url_),
@@ -63,12 +64,19 @@ class TrackerUnderTest {
                                       [this](const process_status_t& m, const ReceivedInfo&) {
                                         heartbeat_ = heartbeat_ || m.name == "bmp-tracker";
                                       });
-    child_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{test::binPath("bmp-tracker"), "--config",
-                                 test::sourceDir() + "/config/tracker.yaml", "--lcm-url", url_,
-                                 "--trajectory", trajectory(), "--keyframe-trajectory", keyframeTrajectory(),
-                                 "--frame-log", frameLog()},
-        ChildProcess::Output::kFile, logPath());
+    std::vector<std::string> argv{test::binPath("bmp-tracker"),
+                                  "--config",
+                                  test::sourceDir() + "/config/tracker.yaml",
+                                  "--lcm-url",
+                                  url_,
+                                  "--trajectory",
+                                  trajectory(),
+                                  "--keyframe-trajectory",
+                                  keyframeTrajectory(),
+                                  "--frame-log",
+                                  frameLog()};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    child_ = std::make_unique<ChildProcess>(argv, ChildProcess::Output::kFile, logPath());
   }
 
   std::string trajectory() const { return (dir_ / "trajectory.txt").string(); }
@@ -517,6 +525,31 @@ TEST(TrackerProcess, AfterACaptureRestartAnswersAreJudgedAgainstTheNewStream) {
   EXPECT_EQ(t.child().stop(20.0), 0);
   const std::string log = test::readText(t.logPath());
   EXPECT_NE(log.find("answer for frame 1500, far ahead of the newest frame 9"), std::string::npos) << log;
+}
+
+// Keyframes reach the mapper in id order, whatever holds one back. The first is held until the stream's
+// camera settles, and was then kept keyframe_hold_ms more for late boxes though it had its own (in lockstep,
+// too): a keyframe made meanwhile went out at once, ahead of it, and the mapper took keyframe 0 coming after
+// keyframe 1 as the start of a new map. Both frame policies, every frame answered (no boxes) before it comes.
+TEST(TrackerProcess, KeyframesGoOutInIdOrder) {
+  const int n = 60;
+  int slot = 10;
+  for (const std::string policy : {"every", "latest"}) {
+    SCOPED_TRACE("frame policy " + policy);
+    TrackerUnderTest t("tracker_keyframe_order_" + policy, slot++, {"--frame-policy", policy});
+    ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+    for (int i = 0; i < n; ++i) {
+      const rgbd_frame_t msg = t.frame(i);
+      t.publish("DETECTIONS", answerFor(msg, false));
+      ASSERT_TRUE(t.publishAndWait(msg)) << "no pose for " << i;
+    }
+    EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
+    t.pumpUntil([] { return false; }, 1.0);  // the keyframes released on the stop
+    ASSERT_GE(t.keyframes.size(), 3u) << "too few keyframes to show an order; log " << t.logPath();
+    EXPECT_EQ(t.keyframes.front().id, 0);
+    for (std::size_t k = 1; k < t.keyframes.size(); ++k)
+      EXPECT_GT(t.keyframes[k].id, t.keyframes[k - 1].id) << "keyframe " << k << " heard";
+  }
 }
 
 }  // namespace

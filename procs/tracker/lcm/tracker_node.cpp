@@ -136,8 +136,11 @@ void TrackerNode::releaseHeldKeyframes(bool all) {
   if (!camera_settled_ && !all) return;
   while (!held_.empty()) {
     HeldKeyframe& h = held_.front();
-    std::optional<FrameBoxes> late = book_.take(h.frame.seq, h.frame.utime, std::chrono::milliseconds(0));
-    if (!late && !all && h.held.elapsedMs() < policy_.keyframe_hold_ms) break;  // in order: the rest wait too
+    // One held only for the camera to settle has its boxes (or, in lockstep, took the frame's answer).
+    std::optional<FrameBoxes> late;
+    if (h.awaits_boxes) late = book_.take(h.frame.seq, h.frame.utime, std::chrono::milliseconds(0));
+    const bool waiting = h.awaits_boxes && !late && h.held.elapsedMs() < policy_.keyframe_hold_ms;
+    if (waiting && !all) break;  // in order: the rest wait too
     if (late && late->usable) {
       late_applied_ += tracker_->applyLateBoxesToKeyFrame(h.keyframe.id, late->boxes);
       const cv::Mat mask = tracker_->keyframeMask(h.keyframe.id, &late->boxes, h.depth);
@@ -307,8 +310,10 @@ void TrackerNode::publish(const rgbd_frame_t& msg, const TrackResult& r, const c
     const cv::Mat mask = r.dynamic_mask.empty() ? cv::Mat::zeros(color.size(), CV_8UC1) : r.dynamic_mask;
     const bool awaits_boxes =
         !had_boxes && config_.dynamic.mode != DynamicMode::kNone && !policy_.reproducible;
-    if (awaits_boxes || !camera_settled_) {
-      held_.push_back({msg, color, depth, *r.new_keyframe, mask, Stopwatch()});  // its boxes may come yet
+    // Keyframes go out in id order, so one made while others are held waits behind them: the mapper takes
+    // keyframe 0 arriving after keyframe 1 as a new map.
+    if (awaits_boxes || !camera_settled_ || !held_.empty()) {
+      held_.push_back({msg, color, depth, *r.new_keyframe, mask, awaits_boxes, Stopwatch()});
     } else {
       ctx_.lcm.publish(channels_.keyframe, toKeyFrameMessage(msg, color, depth, *r.new_keyframe, mask));
       ctx_.status.published();

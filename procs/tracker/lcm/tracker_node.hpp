@@ -117,6 +117,7 @@ class TrackerNode {
     cv::Mat color, depth;
     KeyFramePose keyframe;
     cv::Mat mask;
+    bool awaits_boxes = false;  // real time, made without its own boxes: they may come yet
     Stopwatch held;
   };
   std::deque<HeldKeyframe> held_;
