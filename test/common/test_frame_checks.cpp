@@ -311,5 +311,38 @@ TEST(FrameStream, ARestartedCaptureIsFollowedAfterAFewFrames) {
   EXPECT_EQ(s.lostBefore(), 2);  // seq 3 and 4 of the new stream
 }
 
+// Another publisher's broken copy of a frame just accepted (same seq and stamp) is marked, so no answer goes
+// out under the real frame's name. A damaged frame of its own seq or stamp, or a well-formed frame refused
+// for its order (a restarted capture's), is not a copy.
+TEST(FrameStream, ADamagedCopyOfAnAcceptedFrameIsMarked) {
+  FrameStreamLimits limits;
+  limits.remembered_frames = 4;
+  FrameStream s(limits);
+  for (int64_t seq = 0; seq < 10; ++seq) ASSERT_TRUE(s.accept(frame(seq)).ok);
+  rgbd_frame_t copy = frame(9);
+  copy.depth_scale = 0;
+  auto v = s.accept(copy);
+  EXPECT_FALSE(v.ok);
+  EXPECT_TRUE(v.copies_accepted) << v.reason;
+  copy = frame(7);
+  copy.camera.fx = std::nan("");
+  EXPECT_TRUE(s.accept(copy).copies_accepted);
+  EXPECT_TRUE(s.accept(frame(8, 10, 6)).copies_accepted);  // another camera: refused once settled
+  copy = frame(5);                                         // accepted, but no longer among the last 4
+  copy.depth_scale = 0;
+  EXPECT_FALSE(s.accept(copy).copies_accepted);
+  copy = frame(10);
+  copy.depth_scale = 0;
+  EXPECT_FALSE(s.accept(copy).copies_accepted);  // a damaged frame of its own
+  copy = frame(9);
+  copy.utime += 1;
+  copy.depth_scale = 0;
+  EXPECT_FALSE(s.accept(copy).copies_accepted);  // another stamp
+  v = s.accept(frame(8));
+  EXPECT_FALSE(v.ok);
+  EXPECT_FALSE(v.copies_accepted) << "refused for its order, not damaged";
+  EXPECT_TRUE(s.accept(frame(11)).ok);
+}
+
 }  // namespace
 }  // namespace bmp

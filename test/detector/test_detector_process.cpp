@@ -308,6 +308,31 @@ TEST_F(DetectorProcess, ARefusedFrameDoesNotReplaceTheAnswerAResendRepeats) {
   EXPECT_EQ(last.processed, 1) << "the resend is answered again, not detected again";
 }
 
+// Another publisher's damaged copy of a frame (the same seq and stamp, depth_scale 0) is refused and not
+// answered: the refusal went out first, under the real frame's name, and the tracker kept it in place of the
+// frame's boxes. The frame's own answer is its only one.
+TEST_F(DetectorProcess, ADamagedCopyOfAFrameIsNotAnsweredInItsName) {
+  ASSERT_NO_FATAL_FAILURE(start("every", 6));  // the fixture fails a second answer for a seq
+  const auto frames = bonnFrames(445, 2);
+  ASSERT_EQ(frames.size(), 2u);
+  const rgbd_frame_t real = frameMessage(0, frames[0]);
+  rgbd_frame_t copy = real;
+  copy.depth_scale = 0.0;
+  node_->publish("RGBD_FRAME", real);
+  node_->publish("RGBD_FRAME", copy);
+  node_->publish("RGBD_FRAME", frameMessage(1, frames[1]));
+  ASSERT_TRUE(pumpUntil([&] { return answers_.count(1) == 1; }, 60.0)) << diagnosis();
+  ASSERT_EQ(std::count(order_.begin(), order_.end(), 0), 1) << diagnosis();
+  EXPECT_TRUE(answers_.at(0).skipped.empty()) << answers_.at(0).skipped;
+  EXPECT_GT(answers_.at(0).num_detections, 0) << "people walk through these frames";
+  const process_status_t last = stop();
+  EXPECT_EQ(last.processed, 2);
+  EXPECT_EQ(last.malformed, 1);
+  EXPECT_NE(log().find("depth_scale must be positive (a damaged copy of a frame taken; not answered)"),
+            std::string::npos)
+      << log();
+}
+
 // --model swaps the configuration's model for one from the shared folder (a lockstep run that compares with
 // the paper, whose detector sees 640 px): the process says so, and answers with it.
 TEST_F(DetectorProcess, AModelNamedOnTheCommandLineReplacesTheConfiguredOne) {

@@ -492,6 +492,30 @@ TEST(TrackerProcess, ARefusedFrameDoesNotReplaceTheAnswerAResendRepeats) {
   EXPECT_EQ(t.child().stop(20.0), 0);
 }
 
+// Another publisher's damaged copy of a frame just tracked (the same seq and stamp) is refused without a
+// skipped pose in the frame's name: lockstep capture would take it as the frame's answer.
+TEST(TrackerProcess, ADamagedCopyOfAFrameIsNotAnsweredInItsName) {
+  TrackerUnderTest t("tracker_damaged_copy", 12);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+    rgbd_frame_t copy = t.frame(i);
+    copy.camera.fx = -1.0;
+    t.publish("RGBD_FRAME", copy);
+  }
+  ASSERT_TRUE(t.playAndWait(4)) << "no pose for 4";
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  t.pumpUntil([] { return false; }, 0.5);  // anything still in flight
+  ASSERT_EQ(t.poses.size(), 5u) << "a copy was answered";
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(t.poses[i].seq, i);
+    EXPECT_NE(static_cast<int>(t.poses[i].state), static_cast<int>(slam_pose_t::STATE_SKIPPED)) << i;
+  }
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("frame seq 3: "), std::string::npos) << log;
+  EXPECT_NE(log.find("(a damaged copy of a frame taken; not answered)"), std::string::npos) << log;
+}
+
 // A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"
 // against the new stream. Against the old stream's seq (the largest seen, as before), a forged answer for
 // seq 1500 was taken, and with others like it would have pushed the real answers out of the book.

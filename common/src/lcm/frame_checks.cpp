@@ -1,5 +1,6 @@
 #include "bmp/lcm/frame_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bmp/common/camera_model.hpp"
@@ -106,8 +107,18 @@ FrameStream::Verdict FrameStream::refuse(const rgbd_frame_t& msg, const std::str
   return {false, why, 0};
 }
 
+FrameStream::Verdict FrameStream::refuseDamaged(const rgbd_frame_t& msg, const std::string& why) {
+  Verdict v = refuse(msg, why);
+  v.copies_accepted = std::any_of(recent_.begin(), recent_.end(), [&](const Position& p) {
+    return p.seq == msg.seq && p.utime == msg.utime;
+  });
+  return v;
+}
+
 FrameStream::Verdict FrameStream::take(const rgbd_frame_t& msg, std::string note) {
   last_ = {msg.seq, msg.utime};
+  recent_.push_back(last_);
+  while (static_cast<int>(recent_.size()) > limits_.remembered_frames) recent_.pop_front();
   candidate_run_ = 0;
   ++accepted_;
   camera_.used();
@@ -165,19 +176,19 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
 }
 
 FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
-  if (std::string why = checkFrame(msg); !why.empty()) return refuse(msg, why);
+  if (std::string why = checkFrame(msg); !why.empty()) return refuseDamaged(msg, why);
   // Until the camera settles, each accepted frame counts towards keeping its camera for the run: a few
   // frames of junk must not count (they would lock the real camera out), so their images are walked whole.
   if (!camera_.settled()) {
     std::string why = structureProblem(msg.color, "colour");
     if (why.empty()) why = structureProblem(msg.depth, "depth");
-    if (!why.empty()) return refuse(msg, why);
+    if (!why.empty()) return refuseDamaged(msg, why);
   }
   switch (camera_.fit(msg.camera, msg.depth_scale)) {
     case CameraPin::Fit::kFirst:
       return pin(msg, "");
     case CameraPin::Fit::kRefused:
-      return refuse(msg, camera_.refusal(msg.camera, msg.depth_scale));
+      return refuseDamaged(msg, camera_.refusal(msg.camera, msg.depth_scale));
     case CameraPin::Fit::kReplaces: {
       ++camera_changes_;
       Verdict v = pin(msg, camera_.replacement(msg.camera, msg.depth_scale));

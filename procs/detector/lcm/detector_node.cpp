@@ -35,19 +35,23 @@ DetectorNode::DetectorNode(ProcessContext& ctx, const DetectorSettings& settings
 }
 
 void DetectorNode::receive(const rgbd_frame_t& msg) {
-  const auto refuse = [&](const std::string& why, bool on_arrival) {
+  const auto refuse = [&](const std::string& why, SkipAnswer how) {
     FrameResult failed;
     failed.seq = msg.seq;
     failed.utime = msg.utime;
     failed.error = why;
-    skip(failed, on_arrival);
+    skip(failed, how);
   };
   const FrameStream::Verdict verdict = stream_.accept(msg);
   if (verdict.repeat)
     return last_answer_.answerRepeat(ctx_.lcm, settings_.detections_channel, msg.seq, msg.utime);
   ctx_.status.received();  // a repeat is not a frame of its own
   ctx_.status.lost(verdict.lost_before);
-  if (!verdict.ok) return refuse(verdict.reason, true);
+  if (!verdict.ok)
+    return verdict.copies_accepted
+               ? refuse(verdict.reason + " (a damaged copy of a frame taken; not answered)",
+                        SkipAnswer::kNone)
+               : refuse(verdict.reason, SkipAnswer::kOnce);
   if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. a new camera
   FrameJob job;
   job.seq = msg.seq;
@@ -55,21 +59,21 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
   try {
     job.color = fromMsg(msg.color);
   } catch (const ImageError& e) {
-    return refuse(std::string("colour image: ") + e.what(), false);
+    return refuse(std::string("colour image: ") + e.what(), SkipAnswer::kRemembered);
   }
   // Waits here in 'every' mode while the queue is full; counts the frame it displaced in 'latest' mode.
   ctx_.status.dropped(static_cast<int64_t>(worker_.submit(std::move(job))));
 }
 
-void DetectorNode::skip(const FrameResult& failed, bool refused_on_arrival) {
+void DetectorNode::skip(const FrameResult& failed, SkipAnswer how) {
   const std::string warning = "frame seq " + std::to_string(failed.seq) + ": " + failed.error + "; skipped";
   if (const auto left_out = warnings_.admit("skipped frames")) log::warn(warning, leftOutNote(*left_out));
   ctx_.status.malformed();
   ctx_.status.setMessage(warning);
   const detections_t msg = toDetectionsMessage(failed, model_name_);
-  if (refused_on_arrival)
+  if (how == SkipAnswer::kOnce)
     ctx_.lcm.publish(settings_.detections_channel, msg);
-  else
+  else if (how == SkipAnswer::kRemembered)
     answer(msg);
 }
 

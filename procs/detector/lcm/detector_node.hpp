@@ -32,11 +32,19 @@ class DetectorNode {
  private:
   void receive(const rgbd_frame_t& msg);
   void publishResults();
-  // A frame that cannot be processed is warned about, counted, and still answered (no boxes, the reason),
-  // so lockstep never waits in vain. A frame the stream refused on arrival is judged and answered again if
-  // sent again, so its answer is not remembered: it would replace the answer a resend of the real frame
-  // before it repeats.
-  void skip(const FrameResult& failed, bool refused_on_arrival = false);
+  // How a frame that cannot be processed is answered.
+  enum class SkipAnswer {
+    kRemembered,  // answered, and the answer repeated for a resend
+    // Refused on arrival: judged and answered again if sent again, so not remembered (it would replace
+    // the answer a resend of the real frame before it repeats).
+    kOnce,
+    // A damaged copy of a frame accepted (FrameStream::Verdict::copies_accepted): not answered, as the
+    // answer would go out under the real frame's seq and stamp and stand for its boxes.
+    kNone,
+  };
+  // A frame that cannot be processed is warned about, counted, and answered as `how` says (no boxes, the
+  // reason), so lockstep never waits in vain.
+  void skip(const FrameResult& failed, SkipAnswer how = SkipAnswer::kRemembered);
   void answer(const detections_t& msg);  // publishes and remembers it for a repeated frame
 
   ProcessContext& ctx_;

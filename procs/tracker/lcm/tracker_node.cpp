@@ -68,7 +68,10 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
 
 void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict) {
   // Answered here, on the receive thread: a flood of bad frames never pushes real ones out of the queue.
-  const std::string reason = "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason;
+  // A damaged copy of a frame taken is not answered: its answer would go out under the real frame's name.
+  const std::string reason =
+      "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason +
+      (verdict.copies_accepted ? " (a damaged copy of a frame taken; not answered)" : "");
   if (const auto left_out = warnings_.admit("refused frames")) {
     if (verdict.lost_before > 0)
       log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
@@ -76,7 +79,10 @@ void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& ve
   }
   // Not remembered for a resend: the frame sent again is judged again and answered again, and a refused
   // frame (another publisher's) must not replace the answer a lockstep resend of the real one repeats.
-  ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));
+  if (!verdict.copies_accepted) {
+    ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));
+    ++refusals_answered_;
+  }
   {
     const std::lock_guard<std::mutex> lock(refusal_mutex_);
     last_refusal_ = reason;
@@ -162,10 +168,12 @@ void TrackerNode::syncStatus() {
   received_reported_ = received;
   dropped_reported_ = dropped;
   lost_reported_ = lost;
+  const int64_t answered = refusals_answered_.load();
+  ctx_.status.published(answered - answered_reported_);
+  answered_reported_ = answered;
   const int64_t refused = refused_.load();
   if (refused != refused_reported_) {
     ctx_.status.malformed(refused - refused_reported_);
-    ctx_.status.published(refused - refused_reported_);
     refused_reported_ = refused;
     const std::lock_guard<std::mutex> lock(refusal_mutex_);
     ctx_.status.setMessage(last_refusal_);

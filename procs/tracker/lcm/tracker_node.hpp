@@ -97,11 +97,12 @@ class TrackerNode {
   BoundedQueue<Queued> queue_;
   std::atomic<bool> receiving_{true};
   // The receive thread's counts, read by the main thread for the heartbeat.
-  std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0};
+  std::atomic<int64_t> received_{0}, lost_before_{0}, refused_{0}, refusals_answered_{0};
   std::mutex refusal_mutex_;
   std::string last_refusal_;  // guarded by refusal_mutex_
   WarningThrottle warnings_;  // a flood of bad frames cannot flood the log (both threads)
-  int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0, refused_reported_ = 0;
+  int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0, refused_reported_ = 0,
+          answered_reported_ = 0;
   FrameStream stream_;     // receive thread only
   int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked
   int64_t degraded_ = 0;   // OK poses published as DEGRADED

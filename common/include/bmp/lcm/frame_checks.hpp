@@ -4,6 +4,7 @@
 // belong to another stream (stamps going back, another camera). One home for the rules, so the tracker,
 // the detector and any tool refuse the same frames with the same words.
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 
@@ -36,6 +37,8 @@ struct FrameStreamLimits {
   // Frames accepted with one camera before it is kept for the run. Until then a frame from another camera
   // replaces it: one forged frame before the capture's first must not lock every real frame out.
   int settle_frames = 5;
+  // Accepted frames remembered by (seq, stamp), so a damaged copy of one is known for what it is.
+  int remembered_frames = 64;
 };
 
 // One consumer's view of the frame stream. accept() refuses frames that fail checkFrame, whose seq or
@@ -60,6 +63,10 @@ class FrameStream {
     bool new_camera = false;
     // The stream's camera has settle_frames accepted frames: what was built from it may be announced.
     bool camera_settled = false;
+    // Refused as damaged (checks, structure, camera), yet naming the seq and stamp of a frame accepted
+    // shortly before: another publisher's broken copy. Not to be answered: an answer under that frame's
+    // name would stand for the real frame's, which is coming or came.
+    bool copies_accepted = false;
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits), camera_(limits.settle_frames) {}
   Verdict accept(const rgbd_frame_t& msg);
@@ -87,10 +94,13 @@ class FrameStream {
   Verdict pin(const rgbd_frame_t& msg, std::string note);
   // Frames missing before msg (counted once: a refused frame arrived, so it is refused, not lost).
   int64_t countGap(const rgbd_frame_t& msg);
+  // Refuses a frame that is unusable in itself, noting whether it names a recently accepted frame.
+  Verdict refuseDamaged(const rgbd_frame_t& msg, const std::string& why);
 
   FrameStreamLimits limits_;
   CameraPin camera_;
   Position last_;                    // the last accepted frame
+  std::deque<Position> recent_;      // the last remembered_frames accepted, oldest first
   std::optional<int64_t> seen_seq_;  // the highest plausible seq received, accepted or refused
   Position candidate_;               // the newest out-of-order frame, which may be a restarted capture's
   // The last frame accepted jumped far ahead: where the stream was before it, and the frames counted as
