@@ -84,6 +84,31 @@ TEST(LauncherUsage, ADatasetCaptureWouldRefuseLeavesTheEarlierRunInOutAsItWas) {
     EXPECT_EQ(test::readText((dir / "run" / "eval.json").string()), "{\"ate_rmse_m\": 0.0108}\n") << message;
     EXPECT_FALSE(fs::exists(dir / "run" / "previous")) << message;
   }
+  // LCM that cannot be opened: the run set the earlier one aside first, and a second attempt lost it.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const Outcome o = runCommand("launcher_earlier_run",
+                                 {binPath("bmp-run"), "--lcm-url", "foo://bar", "--out",
+                                  (dir / "run").string(), "--config", run_yaml, "--dataset", bonn},
+                                 60);
+    EXPECT_NE(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("cannot open LCM at 'foo://bar'"), std::string::npos) << o.output;
+    EXPECT_EQ(test::readText((dir / "run" / "eval.json").string()), "{\"ate_rmse_m\": 0.0108}\n");
+    EXPECT_FALSE(fs::exists(dir / "run" / "previous"));
+  }
+}
+
+// An --out that cannot be made is a usage error naming it, not a filesystem exception.
+TEST(LauncherUsage, AnOutFolderThatCannotBeMadeIsAUsageError) {
+  const fs::path dir = test::scratchDir("launcher_out_unmakeable");
+  std::ofstream(dir / "file") << "a file, not a folder\n";
+  const std::string out = (dir / "file" / "run").string();
+  const Outcome o =
+      runCommand("launcher_out_unmakeable",
+                 {binPath("bmp-run"), "--lcm-url", "memq://", "--out", out, "--frames", "5"}, 60);
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--out '" + out + "': cannot make the folder: Not a directory"), std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("started "), std::string::npos) << o.output;
 }
 
 }  // namespace

@@ -42,15 +42,15 @@ struct Launched {
 
 // A run's processes and what watches them, set up in this order and torn down in reverse (children first).
 struct Session {
-  Session(const RunSettings& settings, const RunRequest& request, fs::path logs_dir)
-      : monitor(request.lcm_url, settings.pose_channel, settings.detections_channel, settings.status_channel),
-        logs(std::move(logs_dir)) {}
+  Session(const RunSettings& settings, const RunRequest& request)
+      : monitor(request.lcm_url, settings.pose_channel, settings.detections_channel,
+                settings.status_channel) {}
 
   StopSignal stop;
   OutputRelay relay;
   // Listening before anything starts, so the summary hears every frame's answer.
   RunMonitor monitor;
-  fs::path logs;
+  fs::path logs;                   // set once the run folder is made
   std::vector<Launched> launched;  // every process but capture
   Launched capture{"bmp-capture", nullptr};
 };
@@ -113,11 +113,17 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
 // Creates the run folder and its logs/; a folder chosen by us (not by --out) is also linked as
 // <output_root>/latest. Returns the logs folder.
 fs::path prepareRunFolder(const RunRequest& request, const RunSettings& settings, bool link_latest) {
-  const fs::path logs = fs::path(request.out_dir) / "logs";
+  const fs::path out(request.out_dir);
+  const fs::path logs = out / "logs";
+  std::error_code ec;
+  fs::create_directories(out, ec);  // before an earlier run is moved: a folder we cannot make displaces none
+  if (ec) throw ArgError("bmp-run: --out '" + request.out_dir + "': cannot make the folder: " + ec.message());
+  const bool replaces = fs::exists(out / kPreviousRunFolder, ec);
   if (setAsideEarlierRun(request.out_dir))
-    log::info("the earlier run in ", request.out_dir, " is kept in ",
-              (fs::path(request.out_dir) / kPreviousRunFolder).string(), " (replacing the one kept there)");
-  fs::create_directories(logs);
+    log::info("the earlier run in ", request.out_dir, " is kept in ", (out / kPreviousRunFolder).string(),
+              replaces ? " (replacing the one kept there)" : "");
+  fs::create_directories(logs, ec);
+  if (ec) throw std::runtime_error(logs.string() + ": cannot make the folder: " + ec.message());
   if (link_latest) {
     const fs::path latest = fs::path(settings.output_root) / "latest";
     std::error_code ignored;
@@ -270,10 +276,13 @@ int runSession(const ArgParser& args) {
   const RunRequest request = requestFromArgs(args, settings);
   const LaunchPlan plan = makePlan(settings, request);
   checkBuilt(plan);  // before the run folder: a misspelt process in run.yaml touches no earlier run
-  const fs::path logs = prepareRunFolder(request, settings, !args.given("out"));
+  // LCM opened before the run folder too: a run that cannot listen (a wrong URL, no multicast route)
+  // displaces no earlier run.
+  Session session(settings, request);
+  session.logs = prepareRunFolder(request, settings, !args.given("out"));
+  const fs::path& logs = session.logs;
   log::info("run folder ", request.out_dir, ", LCM ", request.lcm_url);
 
-  Session session(settings, request, logs);
   startProcesses(session, plan);
   superviseCapture(session);
   int worst = stopOthers(session, settings);
