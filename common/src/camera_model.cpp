@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <Eigen/LU>
@@ -65,6 +66,30 @@ Eigen::Vector2d CameraModel::undistortPixel(const Eigen::Vector2d& uv) const {
                          distortionJacobian(xy).determinant() > 0.0;
   if (!converged) return {std::nan(""), std::nan("")};
   return {xy.x() * k_.fx + k_.cx, xy.y() * k_.fy + k_.cy};
+}
+
+std::string imageSizeProblem(long long width, long long height) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide)
+    return size + " is not a camera's (sides 1 to " + std::to_string(kMaxImageSide) + " pixels)";
+  if (width * height > kMaxImagePixels)
+    return size + " is not a camera's (at most " + std::to_string(kMaxImagePixels) + " pixels)";
+  return "";
+}
+
+std::string focalLengthProblem(const CameraIntrinsics& k) {
+  if (!std::isfinite(k.fx) || !std::isfinite(k.fy) || k.fx <= 0 || k.fy <= 0)
+    return "focal length fx/fy must be positive";
+  const auto fits = [](double f, int side) {
+    return f >= kMinFocalPerSide * side && f <= kMaxFocalPerSide * side;
+  };
+  if (!fits(k.fx, k.width) || !fits(k.fy, k.height)) {
+    std::ostringstream why;
+    why << "focal length fx " << k.fx << ", fy " << k.fy << " is not a camera's for a " << k.width << "x"
+        << k.height << " image (" << kMinFocalPerSide << " to " << kMaxFocalPerSide << " times its side)";
+    return why.str();
+  }
+  return "";
 }
 
 std::string undistortionProblem(const CameraIntrinsics& k) {

@@ -6,9 +6,6 @@ namespace bmp::mapper {
 
 namespace {
 
-// The largest image side we accept (as for RGBD_FRAME): larger is a publisher's mistake.
-constexpr int kMaxSide = 8192;
-
 std::string checkCamera(const CameraIntrinsics& k) {
   const bool finite = std::isfinite(k.fx) && std::isfinite(k.fy) && std::isfinite(k.cx) &&
                       std::isfinite(k.cy) && std::isfinite(k.depth_scale);
@@ -18,9 +15,10 @@ std::string checkCamera(const CameraIntrinsics& k) {
     if (std::abs(d) > kMaxDistortionCoefficient)
       return "distortion coefficient " + std::to_string(d) + " too large";
   }
-  if (k.width <= 0 || k.height <= 0 || k.width > kMaxSide || k.height > kMaxSide)
-    return "camera size " + std::to_string(k.width) + "x" + std::to_string(k.height) + " out of range";
-  if (k.fx <= 0 || k.fy <= 0) return "focal lengths must be positive";
+  if (std::string why = imageSizeProblem(k.width, k.height); !why.empty()) return "camera size " + why;
+  if (std::string why = focalLengthProblem(k); !why.empty()) return why;
+  if (k.cx < 0 || k.cy < 0 || k.cx > k.width || k.cy > k.height)
+    return "principal point lies outside the image";
   if (k.depth_scale <= 0) return "depth_scale must be positive";
   return undistortionProblem(k);  // its rays would not be finite
 }

@@ -95,6 +95,24 @@ TEST(CameraModel, ALensThatFoldsInsideTheImageIsNamedAndItsOuterPixelsHaveNoRay)
   }
 }
 
+// One rule for camera files, frames and keyframes: sides and pixel count, focal lengths that fit the image.
+TEST(CameraModel, ImageSizeAndFocalLengthBounds) {
+  EXPECT_EQ(imageSizeProblem(640, 480), "");
+  EXPECT_EQ(imageSizeProblem(4096, 3072), "");  // Azure Kinect's colour
+  EXPECT_NE(imageSizeProblem(0, 480), "");
+  EXPECT_NE(imageSizeProblem(8193, 1).find("sides 1 to 8192"), std::string::npos);
+  EXPECT_NE(imageSizeProblem(8192, 8192).find("at most 16777216 pixels"), std::string::npos);
+  CameraIntrinsics k;  // 640x480
+  k.fx = k.fy = 542.8;
+  EXPECT_EQ(focalLengthProblem(k), "");
+  k.fx = 30.0;  // 169 degrees across
+  EXPECT_EQ(focalLengthProblem(k), "");
+  for (double bad : {0.0, -1.0, 1e-20, 20.0, 1e6, std::nan("")}) {
+    k.fx = bad;
+    EXPECT_NE(focalLengthProblem(k), "") << bad;
+  }
+}
+
 TEST(CameraConfig, RejectsWrongDistortionLength) {
   const Config c = Config::fromString(
       "camera: {width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, distortion: [0, 0], "

@@ -70,6 +70,16 @@ TEST(FrameChecks, UnusableCamerasAreRefusedWithTheReason) {
   f = frame(0);
   f.camera.width = -3;
   EXPECT_NE(checkFrame(f).find("camera size"), std::string::npos);
+  f = frame(0);  // checked before its images are looked at: decoding one cost 200 MB and 2.7 s
+  f.camera.width = f.camera.height = 8192;
+  EXPECT_NE(checkFrame(f).find("camera size 8192x8192 is not a camera's (at most 16777216 pixels)"),
+            std::string::npos)
+      << checkFrame(f);
+  f = frame(0);
+  f.camera.fx = 1e-20;
+  EXPECT_NE(checkFrame(f).find("camera focal length fx 1e-20, fy 5 is not a camera's for a 8x6 image"),
+            std::string::npos)
+      << checkFrame(f);
 }
 
 TEST(FrameChecks, ImagesMustMatchTheCameraAndTheirEncoding) {

@@ -127,6 +127,20 @@ TEST_F(RefusedKeyframe, NonFinitePoseOrIntrinsics) {
   expectRefused(kf, "depth_scale");
 }
 
+// A focal length no camera has put points 1e22 m away (fx = 1e-20), and a huge camera cost 4.9 GB and 41 s
+// before it could be refused as not the map's.
+TEST_F(RefusedKeyframe, ImplausibleCamera) {
+  KeyframeInput kf = wallKeyframe(1, SE3::Identity(), 2.0);
+  kf.camera.fx = kf.camera.fy = 1e-20;
+  expectRefused(kf, "is not a camera's for a 160x120 image");
+  kf = wallKeyframe(1, SE3::Identity(), 2.0);
+  kf.camera.cx = -5;
+  expectRefused(kf, "principal point lies outside the image");
+  kf = wallKeyframe(1, SE3::Identity(), 2.0);
+  kf.camera.width = kf.camera.height = 8192;
+  expectRefused(kf, "8192x8192 is not a camera's (at most 16777216 pixels)");
+}
+
 TEST_F(RefusedKeyframe, RepeatedId) {
   expectRefused(wallKeyframe(0, SE3::Identity(), 3.0), "already mapped");
 }

@@ -338,7 +338,7 @@ TEST(TrackerProcess, AForgedFirstFrameOfAnotherCameraIsReplacedByTheReal) {
       << log;
 }
 
-// The same, with the real camera's first frame dropped from the tracker's queue: the forged frame, 8000x6000,
+// The same, with the real camera's first frame dropped from the tracker's queue: the forged frame, 4096x4096,
 // keeps the tracker busy while a burst of real frames overflows its queue (4 frames). The frame whose camera
 // replaced the forged one was among those dropped; the frames tracked must still start a map of their own,
 // not go on in the forged camera's (whose size is not even theirs).
@@ -347,14 +347,14 @@ TEST(TrackerProcess, ACameraReplacedInAFrameDroppedFromTheQueueStillStartsANewMa
   ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
   rgbd_frame_t forged = t.frame(0);
   forged.seq = 900;
-  forged.camera.width = 8000;
-  forged.camera.height = 6000;
-  forged.camera.cx = 4000;
-  forged.camera.cy = 3000;
+  forged.camera.width = 4096;  // the largest image a frame may hold: slow to take
+  forged.camera.height = 4096;
+  forged.camera.cx = 2048;
+  forged.camera.cy = 2048;
   for (double& d : forged.camera.distortion) d = 0.0;  // Bonn's lens would fold over inside so wide an image
   forged.color =
-      toMsg(encodeImage(cv::Mat(6000, 8000, CV_8UC3, cv::Scalar(90, 120, 150)), ImageEncoding::kPng));
-  forged.depth = toMsg(encodeImage(cv::Mat(6000, 8000, CV_16UC1, cv::Scalar(10000)), ImageEncoding::kPng));
+      toMsg(encodeImage(cv::Mat(4096, 4096, CV_8UC3, cv::Scalar(90, 120, 150)), ImageEncoding::kPng));
+  forged.depth = toMsg(encodeImage(cv::Mat(4096, 4096, CV_16UC1, cv::Scalar(10000)), ImageEncoding::kPng));
   t.publish("RGBD_FRAME", forged);
   const int burst = 8;
   for (int i = 0; i < burst; ++i) t.publish("RGBD_FRAME", t.frame(i));

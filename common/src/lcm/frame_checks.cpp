@@ -12,12 +12,11 @@ namespace bmp {
 namespace {
 
 std::string checkCamera(const camera_t& c) {
-  if (c.width <= 0 || c.height <= 0 || c.width > kMaxImageSide || c.height > kMaxImageSide)
-    return "camera size " + std::to_string(c.width) + "x" + std::to_string(c.height) + " is not a camera's";
+  if (std::string why = imageSizeProblem(c.width, c.height); !why.empty()) return "camera size " + why;
   const double k[] = {c.fx, c.fy, c.cx, c.cy};
   for (double v : k)
     if (!std::isfinite(v)) return "camera intrinsics are not finite";
-  if (c.fx <= 0 || c.fy <= 0) return "camera focal length fx/fy must be positive";
+  if (std::string why = focalLengthProblem(fromMsg(c, 1.0)); !why.empty()) return "camera " + why;
   if (c.cx < 0 || c.cy < 0 || c.cx > c.width || c.cy > c.height)
     return "camera principal point lies outside the image";
   for (double d : c.distortion) {

@@ -24,6 +24,20 @@ constexpr double kMaxDistortionCoefficient = 10.0;
 // The largest image side we accept (a camera file's or a frame's): larger is a mistake, not a camera we
 // support, and would overflow pixel arithmetic (undistortionProblem walks the border).
 inline constexpr int kMaxImageSide = 8192;
+// The largest image in pixels: 16 MP holds any RGB-D camera's colour (Azure Kinect's 4096x3072 is 12.6 MP).
+// An 8192x8192 frame cost the detector 200 MB and 2.7 s to decode, and the mapper 4.9 GB and 41 s, before
+// its camera could be refused as not the stream's.
+inline constexpr long long kMaxImagePixels = 4096LL * 4096;
+// Focal lengths in pixels relative to the image side: under 0.04 is a view wider than 170 degrees, over 100
+// narrower than 0.6; neither is an RGB-D camera's, and fx = 1e-20 put points 1e22 m away.
+inline constexpr double kMinFocalPerSide = 0.04;
+inline constexpr double kMaxFocalPerSide = 100.0;
+
+// "" when width x height is an image size we accept; else why ("WxH is not ...").
+std::string imageSizeProblem(long long width, long long height);
+// "" when fx and fy are finite, positive and fit the image's width and height (kMin/kMaxFocalPerSide); else
+// why. Expects a size imageSizeProblem accepts.
+std::string focalLengthProblem(const CameraIntrinsics& k);
 
 // "" when the lens distortion can be undone over the whole image (tested along its border, where the
 // distortion is largest); else which pixel it cannot and why. Expects finite intrinsics with fx, fy > 0.
