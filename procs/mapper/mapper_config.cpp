@@ -107,6 +107,8 @@ FloorSettings readFloor(const Config& c) {
   c.check(s.iterations >= 1, "iterations", "must be at least 1");
   read(c, "max_points", s.max_points);
   c.check(s.max_points >= 100, "max_points", "must be at least 100");
+  read(c, "sample_cell_m", s.sample_cell_m);
+  c.check(s.sample_cell_m >= 0.05 && s.sample_cell_m <= 10.0, "sample_cell_m", "must be 0.05 to 10 m");
   return s;
 }
 

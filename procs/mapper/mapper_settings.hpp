@@ -64,10 +64,11 @@ struct FloorSettings {
   FloorMode mode = FloorMode::kFit;
   double height_m = -1.0;  // fixed floor, or the fallback while none is found: along up from the origin
   double max_tilt_deg = 30.0;
-  double inlier_m = 0.03;   // a point this close to a plane supports it
-  double min_share = 0.05;  // of the cloud's points, for a plane to count as the floor
-  int iterations = 400;     // RANSAC samples (deterministic: a fixed seed)
-  int max_points = 20000;   // the cloud is sub-sampled to this many points for the fit
+  double inlier_m = 0.03;      // a point this close to a plane supports it
+  double min_share = 0.05;     // of the cloud's points, for a plane to count as the floor
+  int iterations = 1000;       // RANSAC samples (deterministic: a fixed seed)
+  int max_points = 20000;      // the cloud is sub-sampled to this many points for the fit
+  double sample_cell_m = 0.3;  // a sample's three points come from one cell this size: one surface's
 };
 
 // The 2-D occupancy grid: the octree between two heights above the floor, projected along up onto it.

@@ -2,7 +2,9 @@
 // of up; nothing when there is no floor.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "mapper/floor_plane.hpp"
 
@@ -51,6 +53,32 @@ TEST(FloorFit, ATiltedWorldGetsItsFloorsNormal) {
   EXPECT_NEAR(grounded.height_min_m, -1.2 + grid.height_min_m, 0.01);
   EXPECT_NEAR(grounded.up[1], expected.y(), 0.01);
   EXPECT_EQ(grounded.axes_from, grid.up);  // the grid's axes are chosen by the configured up, not the fit
+}
+
+// A real room's cloud: the floor is a sixth of it, with depth noise near the support band (a structured-light
+// camera's at 4-5 m), and the rest clutter over it. Three points drawn from the whole cloud lie on the floor
+// in 0.5 % of samples, and least squares on the band of a plane a degree off keeps it off: on Bonn the fit
+// was 1.5-13 degrees off, and the grid black where the floor is.
+TEST(FloorFit, AFloorASixthOfACloudOfClutter) {
+  const double tilt = 15.0 * M_PI / 180.0;                        // the first camera looked down
+  const Eigen::Vector3d up(0, -std::cos(tilt), -std::sin(tilt));  // world: camera frame, y down
+  const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = up.cross(e1);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.025);
+  std::uniform_real_distribution<double> across(-3.0, 3.0), above(0.05, 2.2);
+  PointList cloud;
+  const auto add = [&](const Eigen::Vector3d& p) {
+    cloud.push_back({float(p.x()), float(p.y()), float(p.z()), 0, 0, 0});
+  };
+  const double floor_height = -1.4;  // along up
+  for (int i = 0; i < 4000; ++i) add(across(rng) * e1 + across(rng) * e2 + (floor_height + noise(rng)) * up);
+  for (int i = 0; i < 20000; ++i) add(across(rng) * e1 + across(rng) * e2 + (floor_height + above(rng)) * up);
+  const auto floor = fitFloor(cloud, {0, -1, 0}, FloorSettings{});
+  ASSERT_TRUE(floor.has_value());
+  EXPECT_GT(floor->normal.dot(up), std::cos(0.2 * M_PI / 180.0))
+      << "normal " << floor->normal.transpose() << ", off by "
+      << std::acos(std::min(1.0, floor->normal.dot(up))) * 180 / M_PI << " degrees";
+  EXPECT_NEAR(floor->height, floor_height, 0.01);
 }
 
 TEST(FloorFit, NoFloorInViewFallsBackToTheConfiguredOne) {
