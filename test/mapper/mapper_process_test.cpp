@@ -199,9 +199,15 @@ TEST(MapperProcess, FailedSaveAtExitIsANonZeroExit) {
 
 // The tracker restarted mid-run: its new map's keyframes start again at id 0, at the origin of a new world
 // frame. They were refused as already mapped up to the old map's last id and merged into it after that,
-// in the wrong frame. The map so far is saved in its own folder and the new one starts from keyframe 0.
+// in the wrong frame. The map so far is saved in its own folder and the new one starts from keyframe 0. The
+// folder holds an earlier run's tracker_map_1 (this mapper was restarted): it is kept, and the map goes to
+// tracker_map_2 (each run counted from 1, and replaced the earlier run's).
 TEST(MapperProcess, ATrackerThatBeganANewMapGetsANewMapAndTheOldOneIsKept) {
-  MapperUnderTest m;
+  const std::string earlier_run = "# an earlier run's map set aside\n";
+  MapperUnderTest m([&](const fs::path& map_dir) {
+    fs::create_directories(map_dir / "tracker_map_1");
+    std::ofstream(map_dir / "tracker_map_1" / "map.pcd") << earlier_run;
+  });
   ASSERT_TRUE(m.pumpUntil([&] { return m.status.has_value() || !m.child().running(); }, 30)) << m.log();
   for (int id = 0; id < 3; ++id)
     m.publish("SLAM_KEYFRAME",
@@ -225,7 +231,8 @@ TEST(MapperProcess, ATrackerThatBeganANewMapGetsANewMapAndTheOldOneIsKept) {
   EXPECT_EQ(m.status->malformed, 1);
   EXPECT_EQ(m.child().stop(20.0), 0) << m.log();
   const std::string log = m.log();
-  const fs::path earlier = m.mapDir() / "tracker_map_1";
+  const fs::path earlier = m.mapDir() / "tracker_map_2";
+  EXPECT_EQ(bmp::test::readText((m.mapDir() / "tracker_map_1" / "map.pcd").string()), earlier_run);
   EXPECT_NE(log.find("the tracker began a new map (restarted); the map so far (3 keyframes) is saved in " +
                      earlier.string()),
             std::string::npos)

@@ -93,8 +93,13 @@ bool MapperNode::startsNewTrackerMap(const keyframe_t& msg) const {
 }
 
 void MapperNode::setAsideForNewTrackerMap() {
-  const std::string dir =
-      (std::filesystem::path(out_dir_) / ("tracker_map_" + std::to_string(++maps_set_aside_))).string();
+  // The next number not on disk: a restarted mapper writing into the same folder keeps an earlier run's.
+  std::filesystem::path path;
+  std::error_code ec;
+  do {
+    path = std::filesystem::path(out_dir_) / ("tracker_map_" + std::to_string(++maps_set_aside_));
+  } while (std::filesystem::exists(path, ec));
+  const std::string dir = path.string();
   log::warn("keyframe 0 again, at the origin: the tracker began a new map (restarted); the map so far (",
             mapper_->keyframeCount(), " keyframes) is saved in ", dir, " and a new one starts");
   try {
@@ -111,7 +116,7 @@ void MapperNode::startEmptyMap() {
   const MapperSettings settings = mapper_->settings();  // copied: emplace destroys the old mapper first
   mapper_.emplace(settings);
   pose_order_.clear();
-  floor_reported_ = false;
+  floor_reported_.reset();
 }
 
 void MapperNode::onKeyframe(const keyframe_t& msg) {
@@ -171,15 +176,28 @@ void MapperNode::publishDue(double now) {
   }
 }
 
+namespace {
+constexpr double kFloorReportDeg = 1.0;  // a refit this far from the floor last logged is logged
+constexpr double kFloorReportM = 0.03;   // ... or this far along its normal
+}  // namespace
+
 void MapperNode::reportFloor() {
   const auto& floor = mapper_->floor();
-  if (!floor || floor_reported_) return;  // a fitted floor stays fitted (Mapper::floor)
-  floor_reported_ = true;
+  if (!floor) return;  // a fitted floor stays fitted (Mapper::floor)
+  // Refits are logged too once they move the floor (kFloorReportDeg, kFloorReportM): the saved grid stands
+  // on the last, and a user reading only the first missed a grid 13 degrees off.
+  const auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  if (floor_reported_ && angle(floor_reported_->normal, floor->normal) < kFloorReportDeg &&
+      std::abs(floor_reported_->height - floor->height) < kFloorReportM)
+    return;
+  const char* what = floor_reported_ ? "floor refitted: " : "floor fitted: ";
+  floor_reported_ = floor;
   const auto& up = mapper_->settings().grid.up;
-  const double tilt =
-      std::acos(std::clamp(floor->normal.dot(Eigen::Vector3d(up[0], up[1], up[2])), -1.0, 1.0));
-  log::info("floor fitted: ", floor->height, " m along its normal, ", tilt * 180.0 / M_PI,
-            " deg from grid.up, ", static_cast<int>(100 * floor->share), " % of the points");
+  log::info(what, floor->height, " m along its normal, ",
+            angle(floor->normal, Eigen::Vector3d(up[0], up[1], up[2]).normalized()), " deg from grid.up, ",
+            static_cast<int>(100 * floor->share), " % of the points");
 }
 
 bool MapperNode::save(const std::string& why) {

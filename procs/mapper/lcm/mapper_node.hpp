@@ -65,9 +65,9 @@ class MapperNode {
   bool grid_dirty_ = false, cloud_dirty_ = false, save_dirty_ = false, status_dirty_ = false;
   std::string last_warning_;
   WarningThrottle warnings_;  // a flood of bad input (16k pose updates in one message) cannot flood the log
-  bool floor_reported_ = false;
-  std::optional<std::size_t> saved_points_;  // points in the files of the last save
-  int maps_set_aside_ = 0;                   // earlier tracker maps saved into out/tracker_map_<n>/
+  std::optional<FloorPlane> floor_reported_;  // the floor last logged
+  std::optional<std::size_t> saved_points_;   // points in the files of the last save
+  int maps_set_aside_ = 0;                    // earlier tracker maps saved into out/tracker_map_<n>/
 };
 
 }  // namespace bmp::mapper
