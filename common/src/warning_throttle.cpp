@@ -24,6 +24,15 @@ std::optional<int64_t> WarningThrottle::admit(const std::string& kind) {
                          .count());
 }
 
+int64_t WarningThrottle::takeLeftOut(const std::string& kind) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = states_.find(kind);
+  if (it == states_.end()) return 0;
+  const int64_t left_out = it->second.left_out;
+  it->second.left_out = 0;
+  return left_out;
+}
+
 std::string leftOutNote(int64_t left_out) {
   return left_out > 0 ? " (" + std::to_string(left_out) + " more like it not shown)" : "";
 }

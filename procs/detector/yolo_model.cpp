@@ -103,7 +103,8 @@ cv::Mat YoloModel::infer(const cv::Mat& square) {
   if (spec_.kind == ModelKind::kOnnx) {
     if (outputs_.size() != 1 || outputs_[0].dims != 3 || outputs_[0].size[0] != 1)
       throw ModelError(spec_.path + ": expected one 1 x N x (5 + classes) output, got " +
-                       std::to_string(outputs_.size()) + " output(s), first " + shapeOf(outputs_[0]));
+                       std::to_string(outputs_.size()) + " output(s)" +
+                       (outputs_.empty() ? std::string() : ", first " + shapeOf(outputs_[0])));
     return cv::Mat(outputs_[0].size[1], outputs_[0].size[2], CV_32F, outputs_[0].ptr<float>());
   }
   // Darknet: one N x (5 + classes) matrix per yolo layer.

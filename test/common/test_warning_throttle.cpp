@@ -24,5 +24,17 @@ TEST(WarningThrottle, TheFirstFewThenOneLineEveryFewSecondsWithTheCountLeftOut) 
   EXPECT_EQ(leftOutNote(0), "");
 }
 
+// The ones left out after the last line written are told once, by whoever closes: no later warning would.
+TEST(WarningThrottle, TheCountLeftOutAtTheEndIsTakenOnce) {
+  WarningThrottle throttle(2, 5'000'000);
+  EXPECT_EQ(throttle.takeLeftOut("files"), 0);
+  for (int i = 0; i < 6; ++i) throttle.admit("files", 1'000'000);
+  EXPECT_EQ(throttle.takeLeftOut("files"), 4);
+  EXPECT_EQ(throttle.takeLeftOut("files"), 0);
+  const auto next = throttle.admit("files", 7'000'000);
+  ASSERT_TRUE(next);
+  EXPECT_EQ(*next, 0) << "already told";
+}
+
 }  // namespace
 }  // namespace bmp

@@ -61,6 +61,11 @@ void CaptureNode::warnSkip(const std::string& message) {
     log::warn(message, leftOutNote(*left_out));
 }
 
+void CaptureNode::warnSkipsLeftOut() {
+  if (const int64_t left_out = skip_warnings_.takeLeftOut("skipped frames"); left_out > 0)
+    log::warn(left_out, " more skipped frame(s) not named above (the summary counts every one)");
+}
+
 int CaptureNode::run() {
   // Interrupted while waiting: the player sees the stop too and publishes nothing.
   waitForProcesses(ctx_.lcm, ctx_.stop, settings_.wait_for, settings_.wait_timeout_s);
@@ -80,8 +85,10 @@ int CaptureNode::run() {
   } else if (!out.empty()) {
     truth.emplace(out, "true camera poses of the frames played, camera to world");
   }
+  warnSkipsLeftOut();  // the folder's own check, before the first frame
   const PlayerSummary summary =
       player.play(*source_, [&truth](const StampedPose& p) { truth ? truth->append(p) : void(); });
+  warnSkipsLeftOut();
   if (truth) log::info("ground truth (", summary.groundtruth.size(), " poses) written to ", out);
   return summary.published > 0 ? 0 : 1;
 }

@@ -29,6 +29,7 @@ class CaptureNode {
   // One line per skipped frame, the first few of a kind, then a summary every few seconds: a folder whose
   // every image has the wrong size must not bury the log. The end's count has them all.
   void warnSkip(const std::string& message);
+  void warnSkipsLeftOut();  // the count of skip warnings left out, if any
 
   ProcessContext& ctx_;
   CaptureSettings settings_;

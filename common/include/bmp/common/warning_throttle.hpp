@@ -19,6 +19,9 @@ class WarningThrottle {
   std::optional<int64_t> admit(const std::string& kind, int64_t now_us);
   // The same at the steady clock's now.
   std::optional<int64_t> admit(const std::string& kind);
+  // How many of `kind` were left out since the last one written, now counted as told: for a closing line,
+  // when no later warning of the kind would say it.
+  int64_t takeLeftOut(const std::string& kind);
 
  private:
   struct State {
