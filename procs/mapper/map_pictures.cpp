@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
 namespace bmp::mapper {
 
 namespace {
@@ -78,16 +80,28 @@ cv::Mat renderObliqueView(const PointList& cloud, const PlaneFrame& frame, const
 }
 
 cv::Mat renderGrid(const OccupancyGrid2D& grid, int cell_px) {
-  cv::Mat image(std::max(1, grid.height) * cell_px, std::max(1, grid.width) * cell_px, CV_8UC3,
-                cv::Scalar(128, 128, 128));
+  // One pixel a cell first (north up), then scaled to cell_px within the picture budget.
+  const int w = std::max(1, grid.width), h = std::max(1, grid.height);
+  cv::Mat cells(h, w, CV_8UC1, cv::Scalar(128));
   for (int row = 0; row < grid.height; ++row) {
+    uchar* out = cells.ptr<uchar>(grid.height - 1 - row);
     for (int col = 0; col < grid.width; ++col) {
       const int8_t c = grid.at(col, row);
-      const uchar level = c == kCellOccupied ? 0 : c == kCellFree ? 255 : 128;
-      const int top = (grid.height - 1 - row) * cell_px;
-      image(cv::Rect(col * cell_px, top, cell_px, cell_px)).setTo(cv::Scalar(level, level, level));
+      out[col] = c == kCellOccupied ? 0 : c == kCellFree ? 255 : 128;
     }
   }
+  const int side = std::max(w, h);
+  cv::Mat scaled;
+  if (side * cell_px <= kMaxGridPicturePx) {
+    cv::resize(cells, scaled, cv::Size(w * cell_px, h * cell_px), 0, 0, cv::INTER_NEAREST);
+  } else {  // cells under a pixel: each pixel the mean of its cells (grey where walls and free space mix)
+    const double f = static_cast<double>(kMaxGridPicturePx) / side;
+    cv::resize(cells, scaled,
+               cv::Size(std::max(1, static_cast<int>(w * f)), std::max(1, static_cast<int>(h * f))), 0, 0,
+               f < 1.0 ? cv::INTER_AREA : cv::INTER_NEAREST);
+  }
+  cv::Mat image;
+  cv::cvtColor(scaled, image, cv::COLOR_GRAY2BGR);
   return image;
 }
 

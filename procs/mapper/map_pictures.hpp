@@ -16,7 +16,10 @@ cv::Mat renderTopView(const PointList& cloud, const PlaneFrame& frame, const Gri
 // x).
 cv::Mat renderObliqueView(const PointList& cloud, const PlaneFrame& frame, const GridSettings& grid,
                           const PictureSettings& settings);
-// Free white, occupied black, unknown grey, cell_px pixels per cell; the plane's y upwards.
+// The grid picture's largest side: a grid spanning the world's radius at cell_px 4 took 1.6 GB to draw.
+inline constexpr int kMaxGridPicturePx = 4096;
+// Free white, occupied black, unknown grey, cell_px pixels per cell (fewer, down to a share of one, within
+// kMaxGridPicturePx); the plane's y upwards.
 cv::Mat renderGrid(const OccupancyGrid2D& grid, int cell_px);
 
 }  // namespace bmp::mapper

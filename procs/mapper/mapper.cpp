@@ -249,7 +249,10 @@ const std::optional<FloorPlane>& Mapper::floor() {
 OccupancyGrid2D Mapper::grid() {
   std::vector<Eigen::Vector3d> centres;
   centres.reserve(keyframes_.size());
-  for (const auto& entry : keyframes_) centres.push_back(entry.second.T_world_cam.translation());
+  // Only keyframes that saw something stand on the floor: one with no depth (another publisher's, far away)
+  // would widen the grid to reach it.
+  for (const auto& entry : keyframes_)
+    if (!entry.second.local.empty()) centres.push_back(entry.second.T_world_cam.translation());
   return octree_.project(groundedGrid(), centres);
 }
 

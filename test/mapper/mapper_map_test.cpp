@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mapper/map_pictures.hpp"
 #include "mapper/mapper.hpp"
 #include "mapper_test_util.hpp"
 
@@ -301,6 +302,33 @@ TEST(WorldRadius, KeyframesAndUpdatesBeyondItAreRefused) {
   EXPECT_EQ(mapper.keyframeCount(), 2u);
   EXPECT_GT(mapper.grid().cells.size(), cells);  // the one 30 m away widened it, within bounds
   EXPECT_LT(mapper.grid().cells.size(), 2000u * 2000u);
+}
+
+// A keyframe that saw nothing (all depth zero: another publisher's, 140 m away) does not widen the grid
+// with its camera's disc, and a grid as wide as the world is drawn within the picture budget: two such
+// keyframes made each save take 1.6 GB and 22 s.
+TEST(WorldRadius, AKeyframeWithNoDepthDoesNotWidenTheGridAndAHugeGridIsDrawnSmall) {
+  Mapper mapper(test::testSettings());
+  ASSERT_TRUE(mapper.integrate(wallKeyframe(1, SE3::Identity(), kWall)).ok);
+  const OccupancyGrid2D before = mapper.grid();
+  KeyframeInput empty = wallKeyframe(2, translation(140.0, 0, 140.0), kWall);
+  empty.depth.setTo(0);
+  ASSERT_TRUE(mapper.integrate(empty).ok);
+  const OccupancyGrid2D after = mapper.grid();
+  EXPECT_EQ(after.width, before.width);
+  EXPECT_EQ(after.height, before.height);
+  const cv::Mat small = renderGrid(before, 4);
+  EXPECT_EQ(small.cols, before.width * 4);
+  EXPECT_EQ(small.rows, before.height * 4);
+  EXPECT_EQ(small.at<cv::Vec3b>(small.rows - 1, 0), cv::Vec3b(128, 128, 128));
+  OccupancyGrid2D huge;
+  huge.width = 8000;
+  huge.height = 2000;
+  huge.cells.assign(static_cast<std::size_t>(huge.width) * huge.height, kCellFree);
+  const cv::Mat drawn = renderGrid(huge, 4);
+  EXPECT_EQ(drawn.cols, kMaxGridPicturePx);
+  EXPECT_EQ(drawn.rows, kMaxGridPicturePx / 4);
+  EXPECT_EQ(drawn.at<cv::Vec3b>(10, 10), cv::Vec3b(255, 255, 255));
 }
 
 // Forged keyframes with fresh ids at fresh places would grow memory without bound: once the map holds
