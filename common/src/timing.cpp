@@ -11,12 +11,17 @@ namespace bmp {
 
 double percentileOf(std::vector<double> values, double pct) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
   const double rank = std::clamp(pct, 0.0, 100.0) / 100.0 * static_cast<double>(values.size() - 1);
   const auto lo = static_cast<std::size_t>(std::floor(rank));
   const auto hi = static_cast<std::size_t>(std::ceil(rank));
   const double frac = rank - static_cast<double>(lo);
-  return values[lo] + (values[hi] - values[lo]) * frac;
+  // Selection, not a sort: asked of every sample so far in status lines, and a long run has many.
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(lo), values.end());
+  const double at_lo = values[lo];
+  const double at_hi =
+      hi == lo ? at_lo
+               : *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(lo) + 1, values.end());
+  return at_lo + (at_hi - at_lo) * frac;
 }
 
 double TimingStats::percentile(double pct) const {
