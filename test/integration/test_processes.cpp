@@ -100,8 +100,14 @@ TEST(Processes, NothingToPlayOrWriteIsSaidAndLeavesAnEarlierLogAsItWas) {
   const fs::path dir = test::scratchDir("nothing_to_play");
   const std::string log = (dir / "frames.lcmlog").string();
   std::ofstream(log) << "an earlier log";
+  const Outcome exists = runCommand(
+      "tum2lcm_exists", {binPath("tum2lcm"), "--dataset", test::bonnDir(), "--out", log, "--end", "2"});
+  EXPECT_EQ(exists.status, 2) << exists.output;
+  EXPECT_NE(exists.output.find("--out '" + log + "' exists; give --force to replace it"), std::string::npos)
+      << exists.output;
+  EXPECT_EQ(test::readText(log), "an earlier log");
   const Outcome past = runCommand("tum2lcm_past_end", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
-                                                       "--out", log, "--start", "5000"});
+                                                       "--out", log, "--start", "5000", "--force"});
   EXPECT_NE(past.status, 0) << past.output;
   EXPECT_NE(past.output.find("--start 5000 is past the end of"), std::string::npos) << past.output;
   EXPECT_EQ(test::readText(log), "an earlier log");
@@ -109,7 +115,7 @@ TEST(Processes, NothingToPlayOrWriteIsSaidAndLeavesAnEarlierLogAsItWas) {
   for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
            {"--channel", ""}, {"--max-diff", "-1"}, {"--every", "0"}}) {
     const Outcome bad = runCommand("tum2lcm_bad_option", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
-                                                          "--out", log, option, value});
+                                                          "--out", log, "--force", option, value});
     EXPECT_EQ(bad.status, 2) << option << ": " << bad.output;
     EXPECT_NE(bad.output.find(option), std::string::npos) << bad.output;
     EXPECT_EQ(test::readText(log), "an earlier log") << option;

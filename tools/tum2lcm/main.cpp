@@ -10,7 +10,8 @@ int main(int argc, char** argv) {
                       "Writes a TUM-format RGB-D folder as an LCM log of RGBD_FRAME messages (the files' "
                       "bytes, not re-encoded), stamped with the recorded times, for lcm-logplayer.");
   args.addOption("dataset", "DIR", "TUM-format folder");
-  args.addOption("out", "FILE", "LCM log to write");
+  args.addOption("out", "FILE", "LCM log to write (refused if it exists, unless --force)");
+  args.addFlag("force", "replace an existing --out (as lcm-logger's --force)");
   args.addOption("camera", "FILE", "camera YAML; default: DIR/camera.yaml, else chosen by the folder name");
   args.addOption("channel", "NAME", "channel of the frames", bmp::channels::kFrames);
   args.addOption("start", "N", "first associated frame", "0");

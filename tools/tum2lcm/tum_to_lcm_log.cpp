@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -42,6 +43,9 @@ int convertTumToLcmLog(const ArgParser& args) {
   const std::string dir = args.value("dataset");
   const std::string out_path = args.value("out");
   if (dir.empty() || out_path.empty()) throw ArgError("tum2lcm: --dataset and --out are required");
+  std::error_code ec;
+  if (!args.flag("force") && std::filesystem::exists(std::filesystem::symlink_status(out_path, ec)))
+    throw ArgError("tum2lcm: --out '" + out_path + "' exists; give --force to replace it");
   const std::string channel = args.value("channel");
   if (channel.empty()) throw ArgError("tum2lcm: --channel must name a channel");
   TumSourceOptions options;
