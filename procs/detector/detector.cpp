@@ -2,6 +2,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "bmp/common/log.hpp"
 #include "bmp/common/timing.hpp"
 #include "detector/letterbox.hpp"
 
@@ -15,10 +16,18 @@ ModelSpec withThreads(const DetectorConfig& config) {
 }
 }  // namespace
 
+// OpenCV's darknet region layer zeroes class scores under its own threshold: a lower one finds nothing more.
+constexpr float kDarknetScoreFloor = 0.2f;
+
 Detector::Detector(const DetectorConfig& config, const Config& dynamic_classes)
     : config_(config),
       model_(withThreads(config)),
-      levels_(DynamicClassTable::fromConfig(dynamic_classes, model_.classNames())) {}
+      levels_(DynamicClassTable::fromConfig(dynamic_classes, model_.classNames())) {
+  if (config_.modelSpec().kind == ModelKind::kDarknet && config_.conf_threshold < kDarknetScoreFloor)
+    log::warn("conf_threshold ", config_.conf_threshold, " is below ", kDarknetScoreFloor,
+              ", under which OpenCV's darknet layer reports no score: this model finds nothing under ",
+              kDarknetScoreFloor);
+}
 
 std::vector<Detection> Detector::detect(const cv::Mat& bgr, StageTimes* times) {
   Stopwatch watch;

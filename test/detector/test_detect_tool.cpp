@@ -49,6 +49,20 @@ TEST(DetectTool, AConfidenceOutsideZeroToOneIsAUsageErrorNamingTheOption) {
   EXPECT_NE(limit.output.find("--limit"), std::string::npos) << limit.output;
 }
 
+// The darknet model reports no score under 0.2 (OpenCV's region layer drops them): a lower threshold is
+// said to find nothing more (--conf 0.05 looked like it worked). The ONNX models have no such floor.
+TEST(DetectTool, ADarknetThresholdUnderItsFloorIsWarnedAbout) {
+  const ToolRun r = detect(
+      {"--input", test::sharedPath("images/messi5.jpg"), "--model", "yolo-fastest-xl", "--conf", "0.05"});
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(
+      r.output.find("conf_threshold 0.05 is below 0.2, under which OpenCV's darknet layer reports no score"),
+      std::string::npos)
+      << r.output;
+  const ToolRun onnx = detect({"--input", test::sharedPath("images/messi5.jpg"), "--conf", "0.05"});
+  EXPECT_EQ(onnx.output.find("is below 0.2"), std::string::npos) << onnx.output;
+}
+
 // A corrupt image in a folder stopped the run with a message naming no file: it is skipped with a warning
 // naming it, the rest are read, and the end says how many were skipped.
 TEST(DetectTool, ACorruptImageIsSkippedNamingItAndTheRestAreRead) {
