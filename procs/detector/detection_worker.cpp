@@ -50,9 +50,13 @@ DetectionWorker::DetectionWorker(Detector& detector, QueueMode mode, std::size_t
       thread_([this] { run(); }) {}
 
 DetectionWorker::~DetectionWorker() {
+  finish();
+}
+
+void DetectionWorker::finish() {
   stopping_ = true;
   queue_.close();
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
 }
 
 std::size_t DetectionWorker::submit(FrameJob job) {
@@ -67,8 +71,10 @@ std::vector<FrameResult> DetectionWorker::takeResults() {
 }
 
 void DetectionWorker::run() {
-  while (auto job = queue_.pop()) {
-    if (stopping_) break;
+  // A frame taken is processed even when the stop came meanwhile: it is in no queue to be counted from.
+  while (!stopping_) {
+    std::optional<FrameJob> job = queue_.pop();
+    if (!job) break;
     busy_ = true;
     FrameResult result;
     try {

@@ -59,6 +59,9 @@ class DetectionWorker {
   std::size_t submit(FrameJob job);
   // Results finished since the last call, in processing order.
   std::vector<FrameResult> takeResults();
+  // Stops the worker: the frame in progress finishes (its result is taken as any other), the waiting ones
+  // stay unprocessed. Counting those only after this leaves no frame between the two counts.
+  void finish();
   // Frames waiting for the worker, and the one in progress: not answered if the process stops now.
   std::size_t unfinished() const { return queue_.size() + (busy_ ? 1 : 0); }
 

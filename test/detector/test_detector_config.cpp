@@ -126,6 +126,28 @@ TEST(DetectorModel, UnknownClassInDynamicLevelsFailsAtStartUp) {
   EXPECT_NE(msg.find("'persn'"), std::string::npos) << msg;
 }
 
+// Stopped with frames waiting: each frame is either answered (the one in progress) or still waiting, never
+// neither. The count at exit once fell between the two and missed a frame.
+TEST(DetectorWorker, AfterFinishEveryFrameIsAnsweredOrWaiting) {
+  Detector detector(test::presetConfig("yolov5n-320"), test::repoDynamicClasses());
+  FrameJob frame;
+  frame.color.data = readFileBytes(test::bonnDir() + "/rgb/1548339829.89644.jpg");
+  frame.color.width = 640;
+  frame.color.height = 480;
+  frame.color.encoding = ImageEncoding::kJpeg;
+  for (int wait_ms : {0, 5, 60}) {
+    DetectionWorker worker(detector, QueueMode::kEvery, 8);
+    for (int i = 0; i < 5; ++i) {
+      frame.seq = i;
+      worker.submit(frame);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(wait_ms));
+    worker.finish();
+    const std::size_t answered = worker.takeResults().size();
+    EXPECT_EQ(answered + worker.unfinished(), 5u) << "after " << wait_ms << " ms";
+  }
+}
+
 TEST(DetectorWorker, UndecodableColourBytesAreSkippedWithAReasonAndTheNextFrameIsAnswered) {
   Detector detector(test::presetConfig("yolov5n-320"), test::repoDynamicClasses());
   FrameJob bad;
@@ -152,7 +174,7 @@ TEST(DetectorWorker, UndecodableColourBytesAreSkippedWithAReasonAndTheNextFrameI
     DetectionWorker worker(detector, QueueMode::kEvery, 4);
     worker.submit(bad);
     worker.submit(good);
-    for (int i = 0; i < 200 && results.size() < 2; ++i) {
+    for (int i = 0; i < 1500 && results.size() < 2; ++i) {  // 30 s: two inferences on a loaded machine
       for (auto& r : worker.takeResults()) results.push_back(std::move(r));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }

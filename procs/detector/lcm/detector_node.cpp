@@ -107,9 +107,11 @@ int DetectorNode::run() {
     publishResults();
     ctx_.status.tick();
   }
-  // Received but not answered: waiting, or in progress when the stop came. Counted as dropped, so every frame
-  // received is accounted for (processed, dropped, or refused as malformed).
-  publishResults();  // what finished since the last wake-up
+  // Received but not answered: waiting when the stop came. Counted as dropped, so every frame received is
+  // accounted for (processed, dropped, or refused as malformed). The worker is stopped first: a frame
+  // finishing between the answers and the count was neither.
+  worker_.finish();  // the frame in progress is answered
+  publishResults();
   const std::size_t unfinished = worker_.unfinished();
   ctx_.status.dropped(static_cast<int64_t>(unfinished));
   log::info("processed ", ctx_.status.processedCount(), " of ", ctx_.status.receivedCount(),
