@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "mapper/keyframe_cloud.hpp"
@@ -60,6 +62,7 @@ IntegrateResult Mapper::integrate(const KeyframeInput& kf) {
 
   if (!rays_.fits(kf.camera)) rays_ = RayTable(kf.camera);
   Stored stored;
+  stored.arrival = arrivals_++;
   stored.T_world_cam = kf.T_world_cam;
   stored.local = voxelFilter(backProject(kf, rays_, settings_.cloud), settings_.cloud.keyframe_voxel_m);
   // Down-sampled to the octree's leaves before ray casting, so integration keeps up.
@@ -145,11 +148,12 @@ void Mapper::mergeInto(Stored& into, const Stored& revisit) const {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) own.insert(voxelKey(p + leaf * Eigen::Vector3f(dx, dy, dz), leaf));
   const Eigen::Isometry3f T = T_into_revisit.cast<float>();
-  Scan scan{T_into_revisit.translation().cast<float>(), {}};
+  Scan scan{T_into_revisit.translation().cast<float>(), {}, revisit.arrival};
   for (const auto& p : revisit.octree_local) {
     const Eigen::Vector3f q = T * p;
     if (own.count(voxelKey(q, leaf)) == 0) scan.points.push_back(q);
   }
+  countSeenAgain(into, revisit, T);
   if (!scan.points.empty()) into.revisits.push_back(std::move(scan));
   if (into.revisits.size() <= static_cast<std::size_t>(settings_.merge.max_scans)) return;
   // The oldest kept scan's endpoints join the keyframe's own: its evidence against a ghost is old by now.
@@ -158,8 +162,36 @@ void Mapper::mergeInto(Stored& into, const Stored& revisit) const {
   for (const auto& p : into.octree_local) rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
   for (const auto& p : into.revisits.front().points)
     rays.push_back(ColoredPoint{p.x(), p.y(), p.z(), 0, 0, 0});
+  std::unordered_map<uint64_t, uint8_t> counts;  // the endpoints' counts carry over, by voxel
+  for (std::size_t i = 0; i < into.octree_local.size(); ++i)
+    counts[voxelKey(into.octree_local[i], leaf)] = into.seen_again[i];
   into.octree_local = positions(voxelFilter(rays, settings_.octomap.resolution_m));
+  into.seen_again.assign(into.octree_local.size(), 0);
+  for (std::size_t i = 0; i < into.octree_local.size(); ++i) {
+    const auto it = counts.find(voxelKey(into.octree_local[i], leaf));
+    if (it != counts.end()) into.seen_again[i] = it->second;
+  }
   into.revisits.erase(into.revisits.begin());
+}
+
+void Mapper::countSeenAgain(Stored& into, const Stored& revisit,
+                            const Eigen::Isometry3f& T_into_revisit) const {
+  const auto leaf = static_cast<float>(settings_.octomap.resolution_m);
+  std::unordered_set<uint64_t> ends;
+  ends.reserve(revisit.octree_local.size());
+  for (const auto& p : revisit.octree_local) ends.insert(voxelKey(T_into_revisit * p, leaf));
+  const int most = std::min(255, octree_.saturatingCasts());
+  into.seen_again.resize(into.octree_local.size(), 0);
+  for (std::size_t i = 0; i < into.octree_local.size(); ++i) {
+    const Eigen::Vector3f& p = into.octree_local[i];
+    bool seen = false;  // within a neighbouring voxel, as for the rays not kept
+    for (int dx = -1; dx <= 1 && !seen; ++dx)
+      for (int dy = -1; dy <= 1 && !seen; ++dy)
+        for (int dz = -1; dz <= 1 && !seen; ++dz)
+          seen = ends.count(voxelKey(p + leaf * Eigen::Vector3f(dx, dy, dz), leaf)) != 0;
+    if (seen && into.seen_again[i] < most) ++into.seen_again[i];
+    if (seen) into.again_arrival = revisit.arrival;  // cast again as the last of them came
+  }
 }
 
 int64_t Mapper::revisitOf(const SE3& T) const {
@@ -187,23 +219,57 @@ void Mapper::flush() {
 }
 
 void Mapper::rebuildOctree() {
+  // Every cast again in the order it first came (the clamped log-odds are not commutative: ten hits of a
+  // mover then twenty misses of revisits leave free space, the misses first an obstacle).
+  struct Cast {
+    int64_t arrival;
+    Stored* kf;
+    const Scan* scan;  // nullptr: the keyframe's own rays; with `again`, those seen again
+    bool again;
+  };
+  std::vector<Cast> casts;
+  for (auto& entry : keyframes_) {
+    Stored& kf = entry.second;
+    casts.push_back({kf.arrival, &kf, nullptr, false});
+    if (kf.again_arrival >= 0) casts.push_back({kf.again_arrival, &kf, nullptr, true});
+    for (const Scan& scan : kf.revisits) casts.push_back({scan.arrival, &kf, &scan, false});
+  }
+  std::stable_sort(casts.begin(), casts.end(),
+                   [](const Cast& a, const Cast& b) { return a.arrival < b.arrival; });
   octree_.clear();
-  for (auto& entry : keyframes_) insertIntoOctree(entry.second);
+  for (const Cast& c : casts) {
+    if (c.scan != nullptr)
+      castRays(*c.kf, c.scan->origin, c.scan->points, 1);
+    else if (!c.again)
+      castRays(*c.kf, Eigen::Vector3f::Zero(), c.kf->octree_local, 1);
+    else
+      castSeenAgain(*c.kf);
+  }
+  for (auto& entry : keyframes_) entry.second.T_world_cam_in_octree = entry.second.T_world_cam;
   octree_stale_ = false;
   output_stale_ = true;
   ++rebuilds_;
 }
 
-void Mapper::insertIntoOctree(Stored& kf) {
+void Mapper::castRays(const Stored& kf, const Eigen::Vector3f& origin,
+                      const std::vector<Eigen::Vector3f>& points, int weight) {
   const Eigen::Isometry3f T = kf.T_world_cam.cast<float>();
-  const auto cast = [&](const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& points) {
-    std::vector<Eigen::Vector3f> world;
-    world.reserve(points.size());
-    for (const auto& p : points) world.push_back(T * p);
-    octree_.insertScan(world, (T * origin).cast<double>());
-  };
-  cast(Eigen::Vector3f::Zero(), kf.octree_local);
-  for (const Scan& s : kf.revisits) cast(s.origin, s.points);  // after the keyframe's own, as they came
+  std::vector<Eigen::Vector3f> world;
+  world.reserve(points.size());
+  for (const auto& p : points) world.push_back(T * p);
+  octree_.insertScan(world, (T * origin).cast<double>(), weight);
+}
+
+void Mapper::castSeenAgain(const Stored& kf) {
+  // The rays merged revisits cast again to the keyframe's endpoints, grouped by how many did.
+  std::map<int, std::vector<Eigen::Vector3f>> again;
+  for (std::size_t i = 0; i < kf.seen_again.size() && i < kf.octree_local.size(); ++i)
+    if (kf.seen_again[i] > 0) again[kf.seen_again[i]].push_back(kf.octree_local[i]);
+  for (const auto& [times, points] : again) castRays(kf, Eigen::Vector3f::Zero(), points, times);
+}
+
+void Mapper::insertIntoOctree(Stored& kf) {
+  castRays(kf, Eigen::Vector3f::Zero(), kf.octree_local, 1);
   kf.T_world_cam_in_octree = kf.T_world_cam;
 }
 

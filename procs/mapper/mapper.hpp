@@ -93,6 +93,7 @@ class Mapper {
   struct Scan {
     Eigen::Vector3f origin = Eigen::Vector3f::Zero();
     std::vector<Eigen::Vector3f> points;
+    int64_t arrival = 0;  // when its revisit came (Mapper::arrivals_)
   };
   struct Stored {
     SE3 T_world_cam = SE3::Identity();            // the newest pose
@@ -100,9 +101,19 @@ class Mapper {
     PointList local;                              // camera frame, keyframe_voxel_m
     std::vector<Eigen::Vector3f> octree_local;    // camera frame, down-sampled to the octree's resolution
     std::vector<Scan> revisits;                   // the newest merged revisits' rays, oldest first
+    // Per endpoint of octree_local: how many merged revisits had a ray ending there too. Those rays are not
+    // kept, but each cleared what it passed through, so a rebuild casts the keyframe's ray to the endpoint
+    // that many times more (up to the octree's saturatingCasts: its clamping forgets beyond that).
+    std::vector<uint8_t> seen_again;
+    int64_t arrival = 0;         // when it came, counted over every keyframe integrated (Mapper::arrivals_)
+    int64_t again_arrival = -1;  // when the last revisit that saw its endpoints again came (-1: none)
   };
   void appendToCloud(const Stored& kf);
   void insertIntoOctree(Stored& kf);
+  // kf's rays from origin to points (its camera frame) at its newest pose, counted weight times.
+  void castRays(const Stored& kf, const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& points,
+                int weight);
+  void castSeenAgain(const Stored& kf);  // the rays of Stored::seen_again
   void rebuildOctree();
   const PointList& stitched();
   bool movedBeyondThresholds(const Stored& kf) const;
@@ -111,6 +122,8 @@ class Mapper {
   // Folds a revisit's cloud into a stored keyframe's (its camera frame), voxel-filtered again, and keeps its
   // rays as a scan of their own (up to merge.max_scans; older ones folded into the keyframe's own).
   void mergeInto(Stored& into, const Stored& revisit) const;
+  // Counts, per endpoint of into's own rays, a revisit's ray ending there too (Stored::seen_again).
+  void countSeenAgain(Stored& into, const Stored& revisit, const Eigen::Isometry3f& T_into_revisit) const;
   // The id of a stored keyframe whose pose is within the merge thresholds of T, or -1.
   int64_t revisitOf(const SE3& T_world_cam) const;
 
@@ -127,6 +140,7 @@ class Mapper {
   bool octree_stale_ = false;
   double last_rebuild_s_ = -1e300;
   int rebuilds_ = 0;
+  int64_t arrivals_ = 0;  // keyframes integrated so far, kept or merged: the order of their casts
   TimingStats integration_ms_;
   std::optional<FloorPlane> floor_;
   int64_t floor_revision_ = -1;  // map_revision_ when floor_ was fitted

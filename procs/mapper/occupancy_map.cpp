@@ -94,16 +94,29 @@ void OccupancyMap::clear() {
   tree_ = makeTree(settings_);
 }
 
-void OccupancyMap::insertScan(const std::vector<Eigen::Vector3f>& points_world,
-                              const Eigen::Vector3d& origin) {
+void OccupancyMap::insertScan(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& origin,
+                              int weight) {
   octomap::Pointcloud scan;
   scan.reserve(points_world.size());
   for (const auto& p : points_world) scan.push_back(p.x(), p.y(), p.z());
+  const octomap::point3d from(static_cast<float>(origin.x()), static_cast<float>(origin.y()),
+                              static_cast<float>(origin.z()));
   // discretize: endpoints in one voxel are cast once, which keeps integration fast.
-  tree_->insertPointCloud(scan,
-                          octomap::point3d(static_cast<float>(origin.x()), static_cast<float>(origin.y()),
-                                           static_cast<float>(origin.z())),
-                          settings_.max_range_m, false, true);
+  if (weight <= 1) return tree_->insertPointCloud(scan, from, settings_.max_range_m, false, true);
+  octomap::KeySet free_cells, occupied_cells;
+  tree_->computeDiscreteUpdate(scan, from, free_cells, occupied_cells, settings_.max_range_m);
+  // As insertPointCloud: a cell both passed through and hit is a hit.
+  const float miss = static_cast<float>(weight) * tree_->getProbMissLog();
+  const float hit = static_cast<float>(weight) * tree_->getProbHitLog();
+  for (const auto& key : free_cells)
+    if (occupied_cells.find(key) == occupied_cells.end()) tree_->updateNode(key, miss);
+  for (const auto& key : occupied_cells) tree_->updateNode(key, hit);
+}
+
+int OccupancyMap::saturatingCasts() const {
+  const double span = tree_->getClampingThresMaxLog() - tree_->getClampingThresMinLog();
+  const double step = std::min(std::abs(tree_->getProbHitLog()), std::abs(tree_->getProbMissLog()));
+  return step > 0 ? static_cast<int>(std::ceil(span / step)) : 1;
 }
 
 Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {

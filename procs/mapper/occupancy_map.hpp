@@ -29,7 +29,12 @@ class OccupancyMap {
 
   void clear();
   // One scan: every point is a hit, every voxel on the way from origin a miss; rays are cut at max_range.
-  void insertScan(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& origin_world);
+  // weight: the scan counts as cast this many times (each of its cells updated once by weight x the hit or
+  // miss log-odds, which the clamping makes the same as casting it again and again).
+  void insertScan(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& origin_world,
+                  int weight = 1);
+  // How many casts take a leaf from one clamping bound to the other: more than this are forgotten.
+  int saturatingCasts() const;
   Occupancy query(const Eigen::Vector3d& p_world) const;
   // The leaf's occupancy probability, or -1 where nothing is known.
   double probability(const Eigen::Vector3d& p_world) const;
