@@ -21,12 +21,14 @@ void checkIntrinsics(const Config& c, const CameraIntrinsics& k) {
   const std::string sides = "must be 1 to " + std::to_string(kMaxImageSide) + " pixels, got ";
   c.check(k.width > 0 && k.width <= kMaxImageSide, "width", sides + std::to_string(k.width));
   c.check(k.height > 0 && k.height <= kMaxImageSide, "height", sides + std::to_string(k.height));
-  c.check(imageSizeProblem(k.width, k.height).empty(), "height", imageSizeProblem(k.width, k.height));
+  const std::string size = imageSizeProblem(k.width, k.height);
+  c.check(size.empty(), "height", size);
   // NaN fails every comparison, so !(v > 0) refuses it too.
   for (const auto& [key, v] :
        {std::pair<const char*, double>{"fx", k.fx}, {"fy", k.fy}, {"depth_scale", k.depth_scale}})
     c.check(std::isfinite(v) && v > 0, key, "must be a positive number, got " + number(v));
-  c.check(focalLengthProblem(k).empty(), "fx", focalLengthProblem(k));
+  const std::string focal = focalLengthProblem(k);
+  c.check(focal.empty(), "fx", focal);
   c.check(std::isfinite(k.cx) && k.cx >= 0 && k.cx <= k.width, "cx",
           "must lie inside the image (0 to width " + std::to_string(k.width) + "), got " + number(k.cx));
   c.check(std::isfinite(k.cy) && k.cy >= 0 && k.cy <= k.height, "cy",

@@ -107,10 +107,10 @@ FrameStream::Verdict FrameStream::refuse(const rgbd_frame_t& msg, const std::str
 }
 
 FrameStream::Verdict FrameStream::refuseDamaged(const rgbd_frame_t& msg, const std::string& why) {
-  Verdict v = refuse(msg, why);
-  v.copies_accepted = std::any_of(recent_.begin(), recent_.end(), [&](const Position& p) {
-    return p.seq == msg.seq && p.utime == msg.utime;
-  });
+  const bool copy = std::any_of(recent_.begin(), recent_.end(),
+                                [&](const Position& p) { return p.seq == msg.seq && p.utime == msg.utime; });
+  Verdict v = refuse(msg, copy ? why + " (a damaged copy of a frame taken; not answered)" : why);
+  v.copies_accepted = copy;
   return v;
 }
 

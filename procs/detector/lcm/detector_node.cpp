@@ -48,10 +48,7 @@ void DetectorNode::receive(const rgbd_frame_t& msg) {
   ctx_.status.received();  // a repeat is not a frame of its own
   ctx_.status.lost(verdict.lost_before);
   if (!verdict.ok)
-    return verdict.copies_accepted
-               ? refuse(verdict.reason + " (a damaged copy of a frame taken; not answered)",
-                        SkipAnswer::kNone)
-               : refuse(verdict.reason, SkipAnswer::kOnce);
+    return refuse(verdict.reason, verdict.copies_accepted ? SkipAnswer::kNone : SkipAnswer::kOnce);
   if (!verdict.reason.empty()) log::warn("frame seq ", msg.seq, ": ", verdict.reason);  // e.g. a new camera
   FrameJob job;
   job.seq = msg.seq;

@@ -68,10 +68,7 @@ void TrackerNode::onFrame(const rgbd_frame_t& msg) {
 
 void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& verdict) {
   // Answered here, on the receive thread: a flood of bad frames never pushes real ones out of the queue.
-  // A damaged copy of a frame taken is not answered: its answer would go out under the real frame's name.
-  const std::string reason =
-      "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason +
-      (verdict.copies_accepted ? " (a damaged copy of a frame taken; not answered)" : "");
+  const std::string reason = "frame seq " + std::to_string(msg.seq) + ": " + verdict.reason;
   if (const auto left_out = warnings_.admit("refused frames")) {
     if (verdict.lost_before > 0)
       log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
@@ -79,6 +76,7 @@ void TrackerNode::refuse(const rgbd_frame_t& msg, const FrameStream::Verdict& ve
   }
   // Not remembered for a resend: the frame sent again is judged again and answered again, and a refused
   // frame (another publisher's) must not replace the answer a lockstep resend of the real one repeats.
+  // A damaged copy of a frame taken is not answered: its answer would go out under the real frame's name.
   if (!verdict.copies_accepted) {
     ctx_.lcm.publish(channels_.pose, toSkippedPoseMessage(msg, reason));
     ++refusals_answered_;

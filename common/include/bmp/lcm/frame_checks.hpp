@@ -65,7 +65,7 @@ class FrameStream {
     bool camera_settled = false;
     // Refused as damaged (checks, structure, camera), yet naming the seq and stamp of a frame accepted
     // shortly before: another publisher's broken copy. Not to be answered: an answer under that frame's
-    // name would stand for the real frame's, which is coming or came.
+    // name would stand for the real frame's, which is coming or came. The reason says so.
     bool copies_accepted = false;
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits), camera_(limits.settle_frames) {}
