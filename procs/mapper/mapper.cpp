@@ -207,69 +207,83 @@ int64_t Mapper::revisitOf(const SE3& T) const {
 }
 
 bool Mapper::maintain(double now_s) {
+  if (rebuild_) return rebuild_->done() && finishRebuild();
   if (!octree_stale_ || now_s - last_rebuild_s_ < settings_.rebuild.min_interval_s) return false;
   last_rebuild_s_ = now_s;
-  rebuildOctree();
+  startRebuild();
+  return false;
+}
+
+bool Mapper::finishRebuild() {
+  if (!rebuild_) return false;
+  std::unique_ptr<OccupancyMap> octree = rebuild_->take();
+  rebuild_.reset();
+  for (const auto& cast : cast_since_rebuild_) castInto(*octree, cast);
+  rebuilt(std::move(*octree));
   return true;
 }
 
 void Mapper::flush() {
-  if (octree_stale_) rebuildOctree();
+  finishRebuild();
+  if (octree_stale_) {
+    startRebuild();
+    finishRebuild();
+  }
   cloud();
 }
 
-void Mapper::rebuildOctree() {
+std::vector<OctreeCast> Mapper::allCasts() const {
   // Every cast again in the order it first came (the clamped log-odds are not commutative: ten hits of a
   // mover then twenty misses of revisits leave free space, the misses first an obstacle).
-  struct Cast {
-    int64_t arrival;
-    Stored* kf;
-    const Scan* scan;  // nullptr: the keyframe's own rays; with `again`, those seen again
-    bool again;
-  };
-  std::vector<Cast> casts;
-  for (auto& entry : keyframes_) {
-    Stored& kf = entry.second;
-    casts.push_back({kf.arrival, &kf, nullptr, false});
-    if (kf.again_arrival >= 0) casts.push_back({kf.again_arrival, &kf, nullptr, true});
-    for (const Scan& scan : kf.revisits) casts.push_back({scan.arrival, &kf, &scan, false});
+  std::vector<std::pair<int64_t, OctreeCast>> casts;
+  for (const auto& entry : keyframes_) {
+    const Stored& kf = entry.second;
+    const Eigen::Isometry3f T = kf.T_world_cam.cast<float>();
+    casts.push_back({kf.arrival, OctreeCast{T, Eigen::Vector3f::Zero(), kf.octree_local, 1}});
+    if (kf.again_arrival >= 0) {
+      // The rays merged revisits cast again to the keyframe's endpoints, grouped by how many did.
+      std::map<int, std::vector<Eigen::Vector3f>> again;
+      for (std::size_t i = 0; i < kf.seen_again.size() && i < kf.octree_local.size(); ++i)
+        if (kf.seen_again[i] > 0) again[kf.seen_again[i]].push_back(kf.octree_local[i]);
+      for (auto& [times, points] : again)
+        casts.push_back({kf.again_arrival, OctreeCast{T, Eigen::Vector3f::Zero(), std::move(points), times}});
+    }
+    for (const Scan& scan : kf.revisits)
+      casts.push_back({scan.arrival, OctreeCast{T, scan.origin, scan.points, 1}});
   }
   std::stable_sort(casts.begin(), casts.end(),
-                   [](const Cast& a, const Cast& b) { return a.arrival < b.arrival; });
-  octree_.clear();
-  for (const Cast& c : casts) {
-    if (c.scan != nullptr)
-      castRays(*c.kf, c.scan->origin, c.scan->points, 1);
-    else if (!c.again)
-      castRays(*c.kf, Eigen::Vector3f::Zero(), c.kf->octree_local, 1);
-    else
-      castSeenAgain(*c.kf);
-  }
-  for (auto& entry : keyframes_) entry.second.T_world_cam_in_octree = entry.second.T_world_cam;
-  octree_stale_ = false;
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<OctreeCast> ordered;
+  ordered.reserve(casts.size());
+  for (auto& c : casts) ordered.push_back(std::move(c.second));
+  return ordered;
+}
+
+void Mapper::startRebuild() {
+  rebuild_watch_.restart();
+  rebuild_poses_.clear();
+  for (const auto& entry : keyframes_) rebuild_poses_.emplace(entry.first, entry.second.T_world_cam);
+  cast_since_rebuild_.clear();
+  rebuild_ = std::make_unique<BackgroundRebuild>(settings_.octomap, allCasts());
+}
+
+void Mapper::rebuilt(OccupancyMap&& octree) {
+  octree_ = std::move(octree);
+  cast_since_rebuild_.clear();
+  for (const auto& [id, pose] : rebuild_poses_) keyframes_.at(id).T_world_cam_in_octree = pose;
+  rebuild_poses_.clear();
+  // Poses updated while it ran may have moved keyframes beyond the thresholds again.
+  octree_stale_ = std::any_of(keyframes_.begin(), keyframes_.end(),
+                              [this](const auto& entry) { return movedBeyondThresholds(entry.second); });
   output_stale_ = true;
   ++rebuilds_;
-}
-
-void Mapper::castRays(const Stored& kf, const Eigen::Vector3f& origin,
-                      const std::vector<Eigen::Vector3f>& points, int weight) {
-  const Eigen::Isometry3f T = kf.T_world_cam.cast<float>();
-  std::vector<Eigen::Vector3f> world;
-  world.reserve(points.size());
-  for (const auto& p : points) world.push_back(T * p);
-  octree_.insertScan(world, (T * origin).cast<double>(), weight);
-}
-
-void Mapper::castSeenAgain(const Stored& kf) {
-  // The rays merged revisits cast again to the keyframe's endpoints, grouped by how many did.
-  std::map<int, std::vector<Eigen::Vector3f>> again;
-  for (std::size_t i = 0; i < kf.seen_again.size() && i < kf.octree_local.size(); ++i)
-    if (kf.seen_again[i] > 0) again[kf.seen_again[i]].push_back(kf.octree_local[i]);
-  for (const auto& [times, points] : again) castRays(kf, Eigen::Vector3f::Zero(), points, times);
+  last_rebuild_ms_ = rebuild_watch_.elapsedMs();
 }
 
 void Mapper::insertIntoOctree(Stored& kf) {
-  castRays(kf, Eigen::Vector3f::Zero(), kf.octree_local, 1);
+  OctreeCast cast{kf.T_world_cam.cast<float>(), Eigen::Vector3f::Zero(), kf.octree_local, 1};
+  castInto(octree_, cast);
+  if (rebuild_) cast_since_rebuild_.push_back(std::move(cast));
   kf.T_world_cam_in_octree = kf.T_world_cam;
 }
 

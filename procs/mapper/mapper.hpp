@@ -16,6 +16,7 @@
 #include "mapper/mapper_settings.hpp"
 #include "mapper/occupancy_grid.hpp"
 #include "mapper/occupancy_map.hpp"
+#include "mapper/octree_rebuild.hpp"
 #include "mapper/point_types.hpp"
 #include "mapper/ray_table.hpp"
 
@@ -55,10 +56,16 @@ class Mapper {
   // New poses of known keyframes: the cloud follows at once (on the next cloud()), the octree at the next
   // maintain() that is due. Updates for unknown ids or with invalid poses are refused one by one.
   PoseUpdateResult updatePoses(const std::vector<PoseUpdate>& updates);
-  // Rebuilds the octree from the stored keyframe clouds when some keyframe moved beyond the rebuild
-  // thresholds since it was inserted, and the last rebuild is min_interval_s old. now_s: a monotonic clock
-  // in seconds. Returns true when it rebuilt.
+  // Starts rebuilding the octree from the stored keyframe clouds, on a thread of its own, when some keyframe
+  // moved beyond the rebuild thresholds since its rays were cast and the last rebuild started
+  // min_interval_s ago; or swaps in a finished rebuild. now_s: a monotonic clock in seconds. Returns true
+  // when it swapped one in. Until then the octree is the one before, with every keyframe integrated since
+  // cast into it; after, it is the rebuilt one with those keyframes cast again on top, in the order they
+  // came: the octree a rebuild at its start, in this thread, would have led to.
   bool maintain(double now_s);
+  // Waits for a running rebuild and swaps it in; true when there was one.
+  bool finishRebuild();
+  bool rebuilding() const { return rebuild_ != nullptr; }
   // Everything up to date whatever the interval (before files are written at exit).
   void flush();
 
@@ -85,6 +92,7 @@ class Mapper {
   const MapperSettings& settings() const { return settings_; }
   const TimingStats& integrationTimes() const { return integration_ms_; }
   int rebuildCount() const { return rebuilds_; }
+  double lastRebuildMs() const { return last_rebuild_ms_; }  // from its start to its swap
   bool octreeStale() const { return octree_stale_; }
 
  private:
@@ -110,11 +118,11 @@ class Mapper {
   };
   void appendToCloud(const Stored& kf);
   void insertIntoOctree(Stored& kf);
-  // kf's rays from origin to points (its camera frame) at its newest pose, counted weight times.
-  void castRays(const Stored& kf, const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& points,
-                int weight);
-  void castSeenAgain(const Stored& kf);  // the rays of Stored::seen_again
-  void rebuildOctree();
+  // Every cast the octree holds, in the order they came, at the keyframes' newest poses.
+  std::vector<OctreeCast> allCasts() const;
+  void startRebuild();
+  // The octree rebuilt: the keyframes' rays were cast from the poses they had when it started.
+  void rebuilt(OccupancyMap&& octree);
   const PointList& stitched();
   bool movedBeyondThresholds(const Stored& kf) const;
   // Why a finite pose is outside the mapped world (settings_.world_radius_m), or "".
@@ -140,6 +148,13 @@ class Mapper {
   bool octree_stale_ = false;
   double last_rebuild_s_ = -1e300;
   int rebuilds_ = 0;
+  double last_rebuild_ms_ = 0;
+  // The running rebuild, the poses it casts from, and what was cast into octree_ since it started (cast
+  // again into the rebuilt octree before the swap).
+  std::unique_ptr<BackgroundRebuild> rebuild_;
+  std::map<int64_t, SE3> rebuild_poses_;
+  std::vector<OctreeCast> cast_since_rebuild_;
+  Stopwatch rebuild_watch_;
   int64_t arrivals_ = 0;  // keyframes integrated so far, kept or merged: the order of their casts
   TimingStats integration_ms_;
   std::optional<FloorPlane> floor_;

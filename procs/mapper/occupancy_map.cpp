@@ -89,10 +89,8 @@ void rasteriseDisc(const BandLeaf& disc, OccupancyGrid2D& grid) {
 OccupancyMap::OccupancyMap(const OctomapSettings& settings)
     : settings_(settings), tree_(makeTree(settings)) {}
 OccupancyMap::~OccupancyMap() = default;
-
-void OccupancyMap::clear() {
-  tree_ = makeTree(settings_);
-}
+OccupancyMap::OccupancyMap(OccupancyMap&&) noexcept = default;
+OccupancyMap& OccupancyMap::operator=(OccupancyMap&&) noexcept = default;
 
 void OccupancyMap::insertScan(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& origin,
                               int weight) {

@@ -26,8 +26,9 @@ class OccupancyMap {
   ~OccupancyMap();
   OccupancyMap(const OccupancyMap&) = delete;
   OccupancyMap& operator=(const OccupancyMap&) = delete;
+  OccupancyMap(OccupancyMap&&) noexcept;
+  OccupancyMap& operator=(OccupancyMap&&) noexcept;
 
-  void clear();
   // One scan: every point is a hit, every voxel on the way from origin a miss; rays are cut at max_range.
   // weight: the scan counts as cast this many times (each of its cells updated once by weight x the hit or
   // miss log-odds, which the clamping makes the same as casting it again and again).

@@ -2,7 +2,10 @@
 // it is seen again, the grid's floor plane, and pose updates moving the cloud, the octree and the grid.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <memory>
+#include <thread>
 
 #include "mapper/map_pictures.hpp"
 #include "mapper/mapper.hpp"
@@ -268,7 +271,12 @@ TEST(PoseUpdate, MovesTheCloudTheOctreeAndTheGrid) {
   EXPECT_TRUE(r.rejected.empty());
   EXPECT_TRUE(cloudMean(mapper.cloud()).isApprox(before + Eigen::Vector3d(1, 0, 0), 1e-3));
   EXPECT_TRUE(mapper.octreeStale());
-  ASSERT_TRUE(mapper.maintain(100.0));
+  // The rebuild runs beside the mapper: until it is swapped in, the octree is the one before.
+  EXPECT_FALSE(mapper.maintain(100.0));
+  EXPECT_TRUE(mapper.rebuilding());
+  EXPECT_EQ(mapper.occupancy().query(old_only), Occupancy::kOccupied);
+  ASSERT_TRUE(mapper.finishRebuild());
+  EXPECT_FALSE(mapper.rebuilding());
   EXPECT_EQ(mapper.occupancy().query(old_only), Occupancy::kUnknown);
   EXPECT_EQ(mapper.occupancy().query(new_only), Occupancy::kOccupied);
   const OccupancyGrid2D grid = mapper.grid();
@@ -282,16 +290,82 @@ TEST(PoseUpdate, RebuildIsDebouncedAndSkipsTinyMoves) {
   mapper.updatePoses({{0, translation(0.005, 0, 0)}});
   EXPECT_FALSE(mapper.octreeStale());  // 5 mm: the octree stays, the cloud follows
   EXPECT_FALSE(mapper.maintain(0.0));
+  EXPECT_FALSE(mapper.rebuilding());
   mapper.updatePoses({{0, translation(0.5, 0, 0)}});
-  EXPECT_TRUE(mapper.maintain(10.0));
+  mapper.maintain(10.0);
+  EXPECT_TRUE(mapper.rebuilding());
+  // maintain() swaps it in once it is done (a loop, as the mapper's own), and only then.
+  bool swapped = false;
+  for (int turn = 0; turn < 60000 && !swapped; ++turn) {
+    swapped = mapper.maintain(10.0);
+    if (!swapped) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(swapped);
+  EXPECT_EQ(mapper.rebuildCount(), 1);
   mapper.updatePoses({{0, translation(1.0, 0, 0)}});
-  EXPECT_FALSE(mapper.maintain(12.0));  // 2 s after the last rebuild
+  EXPECT_FALSE(mapper.maintain(12.0));  // 2 s after the last rebuild started
+  EXPECT_FALSE(mapper.rebuilding());
   EXPECT_TRUE(mapper.octreeStale());
-  EXPECT_TRUE(mapper.maintain(15.0));
+  mapper.maintain(15.0);
+  EXPECT_TRUE(mapper.finishRebuild());
   EXPECT_EQ(mapper.rebuildCount(), 2);
   mapper.updatePoses({{0, translation(2.0, 0, 0)}});
   mapper.flush();  // at exit: whatever the interval
   EXPECT_FALSE(mapper.octreeStale());
+}
+
+// A rebuild runs on its own thread while keyframes come (a rebuild in the mapper's thread took seconds at a
+// few hundred keyframes, and the keyframes sent meanwhile were lost). Whenever it ends, the octree it leaves
+// is the one a rebuild at its start in the mapper's thread leads to: the keyframes integrated meanwhile
+// (a new one, and revisits merged into keyframes the rebuild casts) are cast again on top, in order.
+TEST(PoseUpdate, ARebuildBesideIntegrationEndsAsOneAtItsStartWould) {
+  const auto before = [](Mapper& m) {
+    ASSERT_TRUE(m.integrate(wallKeyframe(0, SE3::Identity(), kWall, cv::Rect(70, 50, 20, 20), kNear)).ok);
+    for (int id = 1; id <= 4; ++id)
+      ASSERT_TRUE(m.integrate(wallKeyframe(id, translation(0.3 * id, 0, 0), kWall)).ok);
+    ASSERT_EQ(m.updatePoses({{2, translation(0.65, 0, 0)}}).applied, 1);
+  };
+  const auto meanwhile = [](Mapper& m) {
+    for (int id = 5; id <= 8; ++id) ASSERT_TRUE(m.integrate(wallKeyframe(id, SE3::Identity(), kWall)).ok);
+    ASSERT_TRUE(m.integrate(wallKeyframe(9, translation(-0.4, 0, 0), kNear)).ok);
+    ASSERT_EQ(m.updatePoses({{3, translation(0.95, 0, 0)}}).applied, 1);
+  };
+  Mapper beside(test::testSettings());
+  before(beside);
+  ASSERT_TRUE(beside.octreeStale());
+  beside.maintain(100.0);
+  ASSERT_TRUE(beside.rebuilding());
+  meanwhile(beside);
+  ASSERT_TRUE(beside.finishRebuild());
+  EXPECT_EQ(beside.mergedCount(), 4u);
+
+  Mapper inline_(test::testSettings());
+  before(inline_);
+  inline_.flush();  // rebuilt before it returns
+  meanwhile(inline_);
+
+  EXPECT_EQ(beside.rebuildCount(), 1);
+  EXPECT_EQ(beside.occupancy().nodeCount(), inline_.occupancy().nodeCount());
+  EXPECT_TRUE(beside.occupancy().binaryData() == inline_.occupancy().binaryData());  // not printed: 50 kB
+  // Keyframe 3 moved 5 cm while the rebuild cast it where it was: the octree is due for another.
+  EXPECT_TRUE(beside.octreeStale());
+  EXPECT_TRUE(inline_.octreeStale());
+  beside.flush();
+  inline_.flush();
+  EXPECT_FALSE(beside.octreeStale());
+  EXPECT_TRUE(beside.occupancy().binaryData() == inline_.occupancy().binaryData());
+}
+
+// A mapper dropped (a new camera, a new tracker map, exit) while a rebuild runs stops it and waits for it.
+TEST(PoseUpdate, AMapperDroppedWhileRebuildingStopsTheRebuild) {
+  auto mapper = std::make_unique<Mapper>(test::testSettings());
+  for (int id = 0; id < 30; ++id)
+    ASSERT_TRUE(mapper->integrate(wallKeyframe(id, translation(0.3 * id, 0, 0), kWall)).ok);
+  ASSERT_EQ(mapper->updatePoses({{0, translation(0.1, 0, 0)}}).applied, 1);
+  mapper->maintain(100.0);
+  ASSERT_TRUE(mapper->rebuilding());
+  mapper.reset();
+  EXPECT_EQ(mapper, nullptr);
 }
 
 TEST(PoseUpdate, UnknownIdsAndBadPosesAreRefusedOneByOne) {

@@ -66,7 +66,8 @@ void MapperNode::run() {
 
 void MapperNode::maintainAndPublish(double now) {
   if (mapper_->maintain(now)) {
-    log::info("octree rebuilt from ", mapper_->keyframeCount(), " keyframes after a pose update");
+    log::info("octree rebuilt after a pose update, beside integration: ", mapper_->keyframeCount(),
+              " keyframes, ", static_cast<int>(mapper_->lastRebuildMs()), " ms");
     grid_dirty_ = true;
   }
   publishDue(now);
