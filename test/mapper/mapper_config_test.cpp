@@ -96,6 +96,8 @@ TEST(MapperConfig, ProcessRules) {
   EXPECT_NE(error("process:\n  save_period_s: -1\n").find("process.save_period_s"), std::string::npos);
   EXPECT_NE(error("process:\n  max_cloud_points: 1000000\n").find("max_cloud_points"), std::string::npos);
   EXPECT_NE(error("process:\n  cloud_channel: ''\n").find("process.cloud_channel"), std::string::npos);
+  EXPECT_NE(error("process:\n  inbox_mib: 0\n").find("process.inbox_mib"), std::string::npos);
+  EXPECT_NE(error("process:\n  inbox_mib: .nan\n").find("process.inbox_mib"), std::string::npos);
   EXPECT_EQ(error("process:\n  save_period_s: 0\n"), "");
 }
 

@@ -26,17 +26,62 @@ MapperNode::MapperNode(ProcessContext& ctx, const MapperSettings& settings, Mapp
       process_(std::move(process)),
       out_dir_(std::move(out_dir)),
       mapper_(std::in_place, settings),
-      camera_(process_.camera_settle_keyframes) {
+      camera_(process_.camera_settle_keyframes),
+      inbox_(static_cast<std::size_t>(process_.inbox_mib * (1 << 20))) {
   ctx_.lcm.subscribe<keyframe_t>(process_.keyframe_channel,
-                                 [this](const keyframe_t& m, const ReceivedInfo&) { onKeyframe(m); });
+                                 [this](const keyframe_t& m, const ReceivedInfo&) { inbox_.offer(m); });
   ctx_.lcm.subscribe<keyframe_poses_t>(
       process_.keyframe_poses_channel,
-      [this](const keyframe_poses_t& m, const ReceivedInfo&) { onPoses(m); });
+      [this](const keyframe_poses_t& m, const ReceivedInfo&) { inbox_.offer(m); });
+  receiver_ = std::thread([this] { receive(); });
+}
+
+MapperNode::~MapperNode() {
+  stopReceiving();
+}
+
+void MapperNode::receive() {
+  while (receiving_ && !ctx_.stop.requested()) {
+    if (!ctx_.lcm.handle(100)) {
+      log::error("LCM receive failed; stopping");
+      ctx_.stop.request();
+    }
+  }
+}
+
+void MapperNode::stopReceiving() {
+  receiving_ = false;
+  if (receiver_.joinable()) receiver_.join();
+  inbox_.close();
+}
+
+void MapperNode::dispatch(const MapperInbox::Message& message) {
+  if (const auto* kf = std::get_if<keyframe_t>(&message))
+    onKeyframe(*kf);
+  else
+    onPoses(std::get<keyframe_poses_t>(message));
+}
+
+void MapperNode::reportRefusedByInbox() {
+  const int64_t refused = inbox_.refusedCount();
+  if (refused == inbox_refusals_reported_) return;
+  const int64_t more = refused - inbox_refusals_reported_;
+  inbox_refusals_reported_ = refused;
+  ctx_.status.received(more);
+  ctx_.status.dropped(more);
+  status_dirty_ = true;
+  last_warning_ =
+      std::to_string(refused) + " message(s) dropped: the mapper fell behind by process.inbox_mib";
+  if (const auto left_out = warnings_.admit("inbox full"))
+    log::warn(more, " keyframe or pose message(s) dropped: ", static_cast<int>(process_.inbox_mib),
+              " MiB of them already waited for the mapper (process.inbox_mib), ", refused, " in all",
+              leftOutNote(*left_out));
 }
 
 void MapperNode::run() {
   while (!ctx_.stop.requested()) {
-    ctx_.lcm.handle(100);
+    if (const auto message = inbox_.popFor(std::chrono::milliseconds(100))) dispatch(*message);
+    reportRefusedByInbox();
     const double now = clock_.elapsedMs() * 1e-3;
     try {
       maintainAndPublish(now);
@@ -60,6 +105,12 @@ void MapperNode::run() {
     }
     ctx_.status.tick();
   }
+  // What came before the stop is mapped before the map is saved.
+  stopReceiving();
+  std::size_t late = 0;
+  for (auto message = inbox_.tryPop(); message; message = inbox_.tryPop(), ++late) dispatch(*message);
+  if (late > 0) log::info(late, " message(s) that waited at the stop mapped");
+  reportRefusedByInbox();
   log::info("mapped ", mapper_->keyframeCount(), " keyframes (+", mapper_->mergedCount(),
             " revisits merged); integration ", mapper_->integrationTimes().summary());
 }

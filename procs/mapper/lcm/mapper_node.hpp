@@ -1,8 +1,11 @@
 #pragma once
-// bmp-mapper's LCM side: keyframes and pose updates in, the library's Mapper called on each, the grid, the
-// octree and a viewer cloud out at their rates, map files on SIGUSR1, at an interval and at exit.
+// bmp-mapper's LCM side: keyframes and pose updates in (a receive thread puts them in the inbox), the
+// library's Mapper called on each in the loop, the grid, the octree and a viewer cloud out at their rates,
+// map files on SIGUSR1, at an interval and at exit.
+#include <atomic>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include <bmp/keyframe_poses_t.hpp>
 #include <bmp/keyframe_t.hpp>
@@ -11,6 +14,7 @@
 #include "bmp/common/warning_throttle.hpp"
 #include "bmp/lcm/camera_pin.hpp"
 #include "bmp/lcm/process.hpp"
+#include "mapper/lcm/mapper_inbox.hpp"
 #include "mapper/lcm/process_settings.hpp"
 #include "mapper/lcm/save_signal.hpp"
 #include "mapper/mapper.hpp"
@@ -20,11 +24,14 @@ namespace bmp::mapper {
 
 class MapperNode {
  public:
-  // Subscribes at once. SIGUSR1 is blocked from here on and read in run().
+  // Subscribes and starts receiving at once. SIGUSR1 is blocked from here on and read in run().
   MapperNode(ProcessContext& ctx, const MapperSettings& settings, MapperProcessSettings process,
              std::string out_dir);
+  ~MapperNode();  // stops the receive thread
+  MapperNode(const MapperNode&) = delete;
+  MapperNode& operator=(const MapperNode&) = delete;
 
-  // Until a stop is requested.
+  // Until a stop is requested; then what waits in the inbox is mapped too.
   void run();
   // Writes every map file into the output folder; returns false when it could not. A failure is logged,
   // never fatal here (the map lives on); the last save decides the exit status.
@@ -34,6 +41,10 @@ class MapperNode {
   bool saveAtExit();
 
  private:
+  void receive();  // the receive thread's loop
+  void stopReceiving();
+  void dispatch(const MapperInbox::Message& message);
+  void reportRefusedByInbox();
   void onKeyframe(const keyframe_t& msg);
   void onPoses(const keyframe_poses_t& msg);
   // The keyframe's camera becomes the map's: the first, or one replacing an unsettled camera (the map
@@ -68,6 +79,10 @@ class MapperNode {
   std::optional<FloorPlane> floor_reported_;  // the floor last logged
   std::optional<std::size_t> saved_points_;   // points in the files of the last save
   int maps_set_aside_ = 0;                    // earlier tracker maps saved into out/tracker_map_<n>/
+  MapperInbox inbox_;
+  int64_t inbox_refusals_reported_ = 0;
+  std::atomic<bool> receiving_{true};
+  std::thread receiver_;  // last: started once everything it uses exists
 };
 
 }  // namespace bmp::mapper

@@ -17,6 +17,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   s.save_period_s = c.get<double>("save_period_s", s.save_period_s);
   s.max_cloud_points = c.get<int>("max_cloud_points", s.max_cloud_points);
   s.camera_settle_keyframes = c.get<int>("camera_settle_keyframes", s.camera_settle_keyframes);
+  s.inbox_mib = c.get<double>("inbox_mib", s.inbox_mib);
   for (const char* key :
        {"keyframe_channel", "keyframe_poses_channel", "octomap_channel", "grid_channel", "cloud_channel"})
     c.check(!c.get<std::string>(key, "x").empty(), key, "must not be empty");
@@ -28,6 +29,8 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   c.check(s.max_cloud_points >= 1000 && s.max_cloud_points <= 250000, "max_cloud_points",
           "must be in 1000..250000 (a MAP_CLOUD message must stay under 4 MiB)");
   c.check(s.camera_settle_keyframes >= 1, "camera_settle_keyframes", "must be at least 1");
+  c.check(std::isfinite(s.inbox_mib) && s.inbox_mib >= 1 && s.inbox_mib <= 16384, "inbox_mib",
+          "must be in 1..16384");
   return s;
 }
 

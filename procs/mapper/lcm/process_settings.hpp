@@ -23,6 +23,8 @@ struct MapperProcessSettings {
   // camera replaces it and the map starts again (a forged keyframe before the tracker's first must not lock
   // the real camera out). Once kept, another camera's keyframes are refused before they are decoded.
   int camera_settle_keyframes = 3;
+  // Keyframes and pose updates waiting for the loop (mapper_inbox.hpp), in MiB: about 45 VGA keyframes.
+  double inbox_mib = 64.0;
 };
 
 MapperProcessSettings processSettingsFromConfig(const Config& section);
