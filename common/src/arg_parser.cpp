@@ -48,6 +48,12 @@ bool ArgParser::parse(int argc, const char* const* argv) {
       opt.value = inline_value;
     } else {
       if (i + 1 >= argc) throw ArgError(program_ + ": option '--" + name + "' needs a value " + opt.metavar);
+      // `--dataset --out x` took "--out" as the folder and went on without the option the user gave; a
+      // value that really starts with an option's name can still be given as --dataset=VALUE.
+      const std::string next = argv[i + 1];
+      if (next.rfind("--", 0) == 0 && options_.count(next.substr(2, next.find('=') - 2)) != 0)
+        throw ArgError(program_ + ": option '--" + name + "' needs a value " + opt.metavar + " before '" +
+                       next + "'");
       opt.value = argv[++i];
     }
   }

@@ -25,6 +25,41 @@ TEST(ArgParser, ParsesBothValueFormsAndFlags) {
   EXPECT_TRUE(p.flag("fast"));
 }
 
+// A value left out before another option: the option is not taken as the value (`--name --fast` named the
+// run "--fast" and lost the flag). A value that starts with "--" but names no option, or given with '=',
+// is a value.
+TEST(ArgParser, AnOptionWhereAValueShouldBeIsAMissingValue) {
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--name", "--fast"};
+    try {
+      p.parse(3, argv);
+      FAIL() << "parsed";
+    } catch (const ArgError& e) {
+      EXPECT_EQ(std::string(e.what()), "prog: option '--name' needs a value S before '--fast'");
+    }
+  }
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--name", "--speed=2"};
+    EXPECT_THROW(p.parse(3, argv), ArgError);
+  }
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--name", "--not-an-option", "--speed", "-2", "--fast"};
+    ASSERT_TRUE(p.parse(6, argv));
+    EXPECT_EQ(p.value("name"), "--not-an-option");
+    EXPECT_DOUBLE_EQ(p.number("speed"), -2.0);
+  }
+  {
+    ArgParser p = makeParser();
+    const char* argv[] = {"prog", "--name=--fast"};
+    ASSERT_TRUE(p.parse(2, argv));
+    EXPECT_EQ(p.value("name"), "--fast");
+    EXPECT_FALSE(p.flag("fast"));
+  }
+}
+
 TEST(ArgParser, DefaultsAndHelp) {
   ArgParser p = makeParser();
   const char* argv[] = {"prog", "--help"};
