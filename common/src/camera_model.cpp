@@ -92,6 +92,24 @@ std::string focalLengthProblem(const CameraIntrinsics& k) {
   return "";
 }
 
+std::string intrinsicsProblem(const CameraIntrinsics& k) {
+  if (std::string why = imageSizeProblem(k.width, k.height); !why.empty()) return "camera size " + why;
+  for (double v : {k.fx, k.fy, k.cx, k.cy})
+    if (!std::isfinite(v)) return "camera intrinsics are not finite";
+  if (std::string why = focalLengthProblem(k); !why.empty()) return "camera " + why;
+  if (k.cx < 0 || k.cy < 0 || k.cx > k.width || k.cy > k.height)
+    return "camera principal point lies outside the image";
+  for (double d : k.distortion) {
+    if (!std::isfinite(d)) return "camera distortion is not finite";
+    if (std::abs(d) > kMaxDistortionCoefficient)
+      return "camera distortion coefficient " + std::to_string(d) +
+             " is not a lens's (|k| <= " + std::to_string(static_cast<int>(kMaxDistortionCoefficient)) + ")";
+  }
+  if (!std::isfinite(k.depth_scale) || k.depth_scale <= 0) return "depth_scale must be positive";
+  if (std::string why = undistortionProblem(k); !why.empty()) return "camera: " + why;
+  return "";
+}
+
 std::string undistortionProblem(const CameraIntrinsics& k) {
   const CameraModel model(k);
   if (!model.hasDistortion()) return "";

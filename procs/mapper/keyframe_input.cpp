@@ -6,23 +6,6 @@ namespace bmp::mapper {
 
 namespace {
 
-std::string checkCamera(const CameraIntrinsics& k) {
-  const bool finite = std::isfinite(k.fx) && std::isfinite(k.fy) && std::isfinite(k.cx) &&
-                      std::isfinite(k.cy) && std::isfinite(k.depth_scale);
-  if (!finite) return "non-finite intrinsics";
-  for (double d : k.distortion) {
-    if (!std::isfinite(d)) return "non-finite distortion";
-    if (std::abs(d) > kMaxDistortionCoefficient)
-      return "distortion coefficient " + std::to_string(d) + " too large";
-  }
-  if (std::string why = imageSizeProblem(k.width, k.height); !why.empty()) return "camera size " + why;
-  if (std::string why = focalLengthProblem(k); !why.empty()) return why;
-  if (k.cx < 0 || k.cy < 0 || k.cx > k.width || k.cy > k.height)
-    return "principal point lies outside the image";
-  if (k.depth_scale <= 0) return "depth_scale must be positive";
-  return undistortionProblem(k);  // its rays would not be finite
-}
-
 std::string checkSize(const cv::Size& size, const CameraIntrinsics& k, const char* what) {
   if (size.width != k.width || size.height != k.height)
     return std::string(what) + " is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
@@ -47,7 +30,7 @@ std::string checkPose(const SE3& T) {
 
 std::string checkKeyframeHeader(const CameraIntrinsics& camera, const cv::Size& depth, const cv::Size& color,
                                 const cv::Size& mask) {
-  std::string why = checkCamera(camera);
+  std::string why = intrinsicsProblem(camera);
   if (why.empty()) why = checkSize(depth, camera, "depth");
   if (why.empty()) why = checkSize(color, camera, "colour");
   if (why.empty() && !mask.empty()) why = checkSize(mask, camera, "mask");
@@ -55,7 +38,7 @@ std::string checkKeyframeHeader(const CameraIntrinsics& camera, const cv::Size& 
 }
 
 std::string checkKeyframe(const KeyframeInput& kf) {
-  std::string why = checkCamera(kf.camera);
+  std::string why = intrinsicsProblem(kf.camera);
   if (why.empty()) why = checkPose(kf.T_world_cam);
   if (why.empty()) why = checkImage(kf.depth, CV_16UC1, kf.camera, "depth");
   if (why.empty()) why = checkImage(kf.color, CV_8UC3, kf.camera, "colour");

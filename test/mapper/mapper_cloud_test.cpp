@@ -121,7 +121,7 @@ TEST_F(RefusedKeyframe, NonFinitePoseOrIntrinsics) {
   expectRefused(kf, "non-finite pose");
   kf = wallKeyframe(1, SE3::Identity(), 2.0);
   kf.camera.fx = std::numeric_limits<double>::infinity();
-  expectRefused(kf, "non-finite intrinsics");
+  expectRefused(kf, "camera intrinsics are not finite");
   kf = wallKeyframe(1, SE3::Identity(), 2.0);
   kf.camera.depth_scale = 0;
   expectRefused(kf, "depth_scale");

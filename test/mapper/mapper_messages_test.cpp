@@ -74,10 +74,10 @@ TEST(MapperMessages, NonFinitePoseOrIntrinsics) {
   EXPECT_NE(reasonOf(m).find("not a unit quaternion"), std::string::npos) << reasonOf(m);
   m = good();
   m.camera.cy = std::numeric_limits<double>::infinity();
-  EXPECT_NE(reasonOf(m).find("non-finite intrinsics"), std::string::npos) << reasonOf(m);
+  EXPECT_NE(reasonOf(m).find("camera intrinsics are not finite"), std::string::npos) << reasonOf(m);
   m = good();
   m.depth_scale = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(reasonOf(m).find("non-finite intrinsics"), std::string::npos) << reasonOf(m);
+  EXPECT_NE(reasonOf(m).find("depth_scale must be positive"), std::string::npos) << reasonOf(m);
   m = good();
   m.camera.distortion[1] = -1e300;
   EXPECT_NE(reasonOf(m).find("distortion coefficient"), std::string::npos) << reasonOf(m);

@@ -11,24 +11,6 @@ namespace bmp {
 
 namespace {
 
-std::string checkCamera(const camera_t& c) {
-  if (std::string why = imageSizeProblem(c.width, c.height); !why.empty()) return "camera size " + why;
-  const double k[] = {c.fx, c.fy, c.cx, c.cy};
-  for (double v : k)
-    if (!std::isfinite(v)) return "camera intrinsics are not finite";
-  if (std::string why = focalLengthProblem(fromMsg(c, 1.0)); !why.empty()) return "camera " + why;
-  if (c.cx < 0 || c.cy < 0 || c.cx > c.width || c.cy > c.height)
-    return "camera principal point lies outside the image";
-  for (double d : c.distortion) {
-    if (!std::isfinite(d)) return "camera distortion is not finite";
-    if (std::abs(d) > kMaxDistortionCoefficient)
-      return "camera distortion coefficient " + std::to_string(d) +
-             " is not a lens's (|k| <= " + std::to_string(static_cast<int>(kMaxDistortionCoefficient)) + ")";
-  }
-  if (std::string why = undistortionProblem(fromMsg(c, 1.0)); !why.empty()) return "camera: " + why;
-  return "";
-}
-
 std::string checkImage(const image_t& img, const camera_t& cam, int8_t pixel_format, const char* what) {
   const std::string name(what);
   if (img.width != cam.width || img.height != cam.height)
@@ -82,8 +64,7 @@ std::string checkFrame(const rgbd_frame_t& msg) {
   if (msg.seq < 0 || msg.seq > kMaxFrameCounter) return "seq " + std::to_string(msg.seq) + " is out of range";
   if (msg.utime < 0 || msg.utime > kMaxFrameCounter)
     return "stamp " + std::to_string(msg.utime) + " us is out of range";
-  if (std::string why = checkCamera(msg.camera); !why.empty()) return why;
-  if (!std::isfinite(msg.depth_scale) || msg.depth_scale <= 0) return "depth_scale must be positive";
+  if (std::string why = intrinsicsProblem(fromMsg(msg.camera, msg.depth_scale)); !why.empty()) return why;
   if (std::string why = checkImage(msg.color, msg.camera, image_t::PIXEL_BGR8, "colour"); !why.empty())
     return why;
   return checkImage(msg.depth, msg.camera, image_t::PIXEL_MONO16, "depth");

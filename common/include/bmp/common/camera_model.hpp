@@ -39,6 +39,12 @@ std::string imageSizeProblem(long long width, long long height);
 // why. Expects a size imageSizeProblem accepts.
 std::string focalLengthProblem(const CameraIntrinsics& k);
 
+// "" when k is a camera a frame or keyframe may come with: its size, finite intrinsics, focal lengths, a
+// principal point inside the image, a lens's distortion that can be undone, a positive depth scale; else
+// why, naming the camera ("camera principal point lies outside the image"). The frame stream's and the
+// mapper's checks, one rule set; a camera file is checked key by key (camera_config.hpp).
+std::string intrinsicsProblem(const CameraIntrinsics& k);
+
 // "" when the lens distortion can be undone over the whole image (tested along its border, where the
 // distortion is largest); else which pixel it cannot and why. Expects finite intrinsics with fx, fy > 0.
 std::string undistortionProblem(const CameraIntrinsics& k);
