@@ -348,10 +348,49 @@ TEST(FrameStream, ADamagedCopyOfAnAcceptedFrameIsMarked) {
   copy.utime += 1;
   copy.depth_scale = 0;
   EXPECT_FALSE(s.accept(copy).copies_accepted);  // another stamp
+  // An exact replay of a frame taken is refused for its order, and not answered either: the frame had its
+  // answer, and a 'skipped' under its name contradicted it (found by review).
   v = s.accept(frame(8));
   EXPECT_FALSE(v.ok);
-  EXPECT_FALSE(v.copies_accepted) << "refused for its order, not damaged";
+  EXPECT_TRUE(v.copies_accepted);
+  EXPECT_NE(v.reason.find("does not follow 9 (a copy of a frame taken before; not answered)"),
+            std::string::npos)
+      << v.reason;
+  auto older = frame(8);
+  older.utime -= 1;  // not a frame taken: answered as refused
+  EXPECT_FALSE(s.accept(older).copies_accepted);
   EXPECT_TRUE(s.accept(frame(11)).ok);
+}
+
+// A refused frame moves no count of lost frames: one forged frame with seq 9010 (another camera) made 9000
+// frames lost, and the real stream's losses after it went uncounted (found by review). A refused frame of
+// the stream itself, between accepted ones, arrived: refused, not lost.
+TEST(FrameStream, ARefusedFrameMovesNoCountOfLostFrames) {
+  FrameStream s;
+  const int settle = FrameStreamLimits{}.settle_frames;
+  for (int64_t seq = 0; seq < settle + 5; ++seq) ASSERT_TRUE(s.accept(frame(seq)).ok);
+  auto forged = frame(9010, 10, 6);  // another camera
+  auto v = s.accept(forged);
+  EXPECT_FALSE(v.ok);
+  EXPECT_EQ(v.lost_before, 0);
+  EXPECT_EQ(s.lostBefore(), 0);
+  forged = frame(9011);
+  forged.depth_scale = 0;  // damaged
+  EXPECT_FALSE(s.accept(forged).ok);
+  EXPECT_EQ(s.lostBefore(), 0);
+  const int64_t next = settle + 5;
+  EXPECT_TRUE(s.accept(frame(next)).ok);
+  v = s.accept(frame(next + 7));  // six real frames lost
+  EXPECT_TRUE(v.ok);
+  EXPECT_EQ(v.lost_before, 6);
+  EXPECT_EQ(s.lostBefore(), 6);
+  auto damaged = frame(next + 8);
+  damaged.depth_scale = 0;
+  EXPECT_FALSE(s.accept(damaged).ok);
+  v = s.accept(frame(next + 10));  // next + 8 refused, next + 9 lost
+  EXPECT_TRUE(v.ok);
+  EXPECT_EQ(v.lost_before, 1);
+  EXPECT_EQ(s.lostBefore(), 7);
 }
 
 }  // namespace

@@ -291,13 +291,14 @@ TEST(TrackerProcess, CameraChangeAndStampsOutOfOrderAreRefused) {
   ASSERT_TRUE(t.publishAndWait(back));
   EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
   EXPECT_NE(t.poses.back().note.find("stamp is not after"), std::string::npos) << t.poses.back().note;
-  rgbd_frame_t again = t.frame(5);  // an old frame replayed
-  ASSERT_TRUE(t.publishAndWait(again));
-  EXPECT_NE(t.poses.back().note.find("does not follow"), std::string::npos) << t.poses.back().note;
+  const std::size_t answered = t.poses.size();
+  t.publish("RGBD_FRAME", t.frame(5));  // an old frame replayed: it had its answer, and gets no other
   for (int i = 10; i < 15; ++i) {
     ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+    EXPECT_EQ(t.poses.back().seq, i);
     EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_OK)) << i;
   }
+  EXPECT_EQ(t.poses.size(), answered + 5);
   EXPECT_EQ(t.child().stop(20.0), 0);
   const Trajectory written = readTumTrajectory(t.trajectory());
   ASSERT_EQ(written.size(), 15u);  // in time order, none of the refused frames
@@ -514,6 +515,55 @@ TEST(TrackerProcess, ADamagedCopyOfAFrameIsNotAnsweredInItsName) {
   const std::string log = test::readText(t.logPath());
   EXPECT_NE(log.find("frame seq 3: "), std::string::npos) << log;
   EXPECT_NE(log.find("(a damaged copy of a frame taken; not answered)"), std::string::npos) << log;
+}
+
+// Found by review: an exact replay of a frame answered before was answered again as 'skipped' under its name;
+// one refused frame of another camera with seq 9010 counted 9000 frames lost and hid the real losses after
+// it; the frame log's 'missed' column took gaps of frames received after the frame it was written for.
+TEST(TrackerProcess, ReplaysAndForeignFramesMoveNoAnswerAndNoCountOfLostFrames) {
+  TrackerUnderTest t("tracker_replay_foreign", 13);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  for (int i = 0; i < 10; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;  // the camera settles
+  rgbd_frame_t foreign = t.frame(10);
+  foreign.seq = 9010;
+  foreign.camera.fx = 600.0;
+  ASSERT_TRUE(t.publishAndWait(foreign));  // refused, and answered: it names no frame taken
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  t.publish("RGBD_FRAME", t.frame(5));  // a replay: not answered
+  ASSERT_TRUE(t.playAndWait(10));
+  ASSERT_TRUE(t.playAndWait(14));  // 11 to 13 never sent
+  EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
+  t.pumpUntil([] { return false; }, 0.5);  // anything still in flight
+  ASSERT_EQ(t.poses.size(), 13u);
+  int answers_for_5 = 0;
+  for (const auto& p : t.poses) answers_for_5 += p.seq == 5;
+  EXPECT_EQ(answers_for_5, 1);
+  const auto rows = test::readTsvRows(t.frameLog());
+  ASSERT_EQ(rows.size(), 12u);
+  EXPECT_EQ(rows[10][1], "10");
+  EXPECT_EQ(rows[10][14], "0");
+  EXPECT_EQ(rows[11][1], "14");
+  EXPECT_EQ(rows[11][14], "3");
+  const std::string log = test::readText(t.logPath());
+  EXPECT_NE(log.find("seq 5 does not follow 9 (a copy of a frame taken before; not answered)"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("3 frame(s) never arrived"), std::string::npos) << log;
+  EXPECT_EQ(log.find("9000 frame(s)"), std::string::npos) << log;
+}
+
+// A run that stops before its camera settled sends no keyframe to the mapper, at exit as during the run:
+// the frames may be a forged sender's (found by review: the exit sent them).
+TEST(TrackerProcess, AtExitKeyframesOfAnUnsettledCameraAreNotSent) {
+  TrackerUnderTest t("tracker_unsettled_exit", 14);
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  ASSERT_TRUE(t.playAndWait(0));
+  EXPECT_EQ(t.child().stop(20.0), 0) << "log " << t.logPath();
+  t.pumpUntil([] { return false; }, 1.0);
+  EXPECT_TRUE(t.keyframes.empty());
+  EXPECT_NE(
+      test::readText(t.logPath()).find("1 keyframe(s) of a camera that never settled not sent to the mapper"),
+      std::string::npos);
 }
 
 // A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "bmp/common/camera_model.hpp"
 #include "bmp/common/image_codec.hpp"
@@ -10,6 +11,9 @@
 namespace bmp {
 
 namespace {
+
+// Refused seqs remembered ahead of the stream: the nearest ones; farther ones are more likely forged.
+constexpr std::size_t kRefusedAheadKept = 1024;
 
 std::string checkImage(const image_t& img, const camera_t& cam, int8_t pixel_format, const char* what) {
   const std::string name(what);
@@ -87,10 +91,13 @@ FrameStream::Verdict FrameStream::refuse(const rgbd_frame_t& msg, const std::str
   return {false, why, 0};
 }
 
-FrameStream::Verdict FrameStream::refuseDamaged(const rgbd_frame_t& msg, const std::string& why) {
+FrameStream::Verdict FrameStream::refuseNaming(const rgbd_frame_t& msg, const std::string& why,
+                                               bool damaged) {
   const bool copy = std::any_of(recent_.begin(), recent_.end(),
                                 [&](const Position& p) { return p.seq == msg.seq && p.utime == msg.utime; });
-  Verdict v = refuse(msg, copy ? why + " (a damaged copy of a frame taken; not answered)" : why);
+  const char* note = damaged ? " (a damaged copy of a frame taken; not answered)"
+                             : " (a copy of a frame taken before; not answered)";
+  Verdict v = refuse(msg, copy ? why + note : why);
   v.copies_accepted = copy;
   return v;
 }
@@ -120,7 +127,10 @@ int64_t FrameStream::countGap(const rgbd_frame_t& msg) {
     return 0;
   }
   if (msg.seq <= *seen_seq_ || msg.seq - *seen_seq_ > limits_.max_seq_gap) return 0;
-  const int64_t gap = msg.seq - *seen_seq_ - 1;
+  // Frames refused in between arrived: refused, not lost.
+  const auto arrived =
+      std::distance(refused_ahead_.upper_bound(*seen_seq_), refused_ahead_.lower_bound(msg.seq));
+  const int64_t gap = msg.seq - *seen_seq_ - 1 - static_cast<int64_t>(arrived);
   seen_seq_ = msg.seq;
   lost_before_ += gap;
   return gap;
@@ -141,8 +151,24 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
   }
   const Position before = last_;
   const bool first = accepted_ == 0;
+  const std::optional<int64_t> seen_before = seen_seq_;
+  const int64_t lost_so_far = lost_before_;
   const int64_t gap = countGap(msg);
   Verdict v = decide(msg);
+  if (!v.ok) {
+    // A refused frame moves no count: its seq may be another stream's (one forged seq 9010 made 9000 frames
+    // lost, and hid the real stream's losses after it). Its own seq, ahead of ours, is remembered: it
+    // arrived, so it is not lost when the stream passes it.
+    seen_seq_ = seen_before;
+    lost_before_ = lost_so_far;
+    v.lost_before = 0;
+    if (seen_seq_ && msg.seq > *seen_seq_ && msg.seq - *seen_seq_ <= limits_.max_seq_gap) {
+      refused_ahead_.insert(msg.seq);
+      if (refused_ahead_.size() > kRefusedAheadKept) refused_ahead_.erase(std::prev(refused_ahead_.end()));
+    }
+    return v;
+  }
+  if (seen_seq_) refused_ahead_.erase(refused_ahead_.begin(), refused_ahead_.upper_bound(*seen_seq_));
   v.lost_before += gap;
   if (v.new_camera) {  // a gap from the replaced camera's frames is not a loss of this stream's
     lost_before_ -= gap;
@@ -156,19 +182,19 @@ FrameStream::Verdict FrameStream::accept(const rgbd_frame_t& msg) {
 }
 
 FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
-  if (std::string why = checkFrame(msg); !why.empty()) return refuseDamaged(msg, why);
+  if (std::string why = checkFrame(msg); !why.empty()) return refuseNaming(msg, why, true);
   // Until the camera settles, each accepted frame counts towards keeping its camera for the run: a few
   // frames of junk must not count (they would lock the real camera out), so their images are walked whole.
   if (!camera_.settled()) {
     std::string why = structureProblem(msg.color, "colour");
     if (why.empty()) why = structureProblem(msg.depth, "depth");
-    if (!why.empty()) return refuseDamaged(msg, why);
+    if (!why.empty()) return refuseNaming(msg, why, true);
   }
   switch (camera_.fit(msg.camera, msg.depth_scale)) {
     case CameraPin::Fit::kFirst:
       return pin(msg, "");
     case CameraPin::Fit::kRefused:
-      return refuseDamaged(msg, camera_.refusal(msg.camera, msg.depth_scale));
+      return refuseNaming(msg, camera_.refusal(msg.camera, msg.depth_scale), true);
     case CameraPin::Fit::kReplaces: {
       ++camera_changes_;
       Verdict v = pin(msg, camera_.replacement(msg.camera, msg.depth_scale));
@@ -198,7 +224,7 @@ FrameStream::Verdict FrameStream::decide(const rgbd_frame_t& msg) {
   // order among themselves is followed.
   candidate_run_ = (candidate_run_ > 0 && orderProblem(candidate_, next).empty()) ? candidate_run_ + 1 : 1;
   candidate_ = next;
-  if (candidate_run_ < limits_.resync_frames) return refuse(msg, why);
+  if (candidate_run_ < limits_.resync_frames) return refuseNaming(msg, why, false);
   ++resyncs_;
   seen_seq_ = msg.seq;
   return take(msg, "stream re-synchronised after " + std::to_string(limits_.resync_frames) +

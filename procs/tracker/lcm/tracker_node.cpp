@@ -110,8 +110,8 @@ void TrackerNode::onDetections(const detections_t& msg) {
   boxes.utime = d.utime;
   boxes.usable = d.skipped.empty();
   boxes.boxes = toObjectBoxes(d.detections);
-  ++detections_heard_;
   if (std::string why = book_.add(d.seq, std::move(boxes)); !why.empty()) throw std::runtime_error(why);
+  ++detections_heard_;  // only an answer taken: a refused stray one must not turn lockstep's wait back on
 }
 
 TrackerNode::FrameBoxChoice TrackerNode::boxesFor(const rgbd_frame_t& msg) {
@@ -193,7 +193,10 @@ void TrackerNode::run(double idle_exit_s) {
     }
     ctx_.status.tick();
   }
-  if (tracker_) releaseHeldKeyframes(true);
+  // Keyframes of a camera that never settled stay unsent, as during the run: they may be a forged frame's.
+  if (tracker_ && camera_settled_) releaseHeldKeyframes(true);
+  if (!held_.empty() && !camera_settled_)
+    log::info(held_.size(), " keyframe(s) of a camera that never settled not sent to the mapper");
   receiving_ = false;
   if (receiver_.joinable()) receiver_.join();  // its counts are final from here
   syncStatus();
@@ -243,13 +246,15 @@ void TrackerNode::process(const Queued& frame) {
   camera_settled_ = verdict.camera_settled;
   if (verdict.lost_before > 0)
     log::warn(verdict.lost_before, " frame(s) before seq ", msg.seq, " never arrived");
-  // Frames missed just before this one (lost upstream or dropped from our queue), for the frame log. The
-  // tracker scales its constant-velocity prediction over the time since the last frame (up to 4 periods), so
-  // the velocity is kept across a gap: forgetting it sent every frame after a gap to the reference
+  // Frames missed just before this one, for the frame log: lost upstream (this frame's own gap: the running
+  // count also held gaps of frames received after it) or dropped from our queue (older than this one, as the
+  // queue drops its oldest). Never below 0: a jump found to be another publisher's gives its gap back. The
+  // tracker scales its constant-velocity prediction over the time since the last frame (up to 4 periods),
+  // so the velocity is kept across a gap: forgetting it sent every frame after a gap to the reference
   // keyframe's descriptor matches, which keep fewer inliers than the scaled prediction.
-  const int64_t gaps = lost_before_.load() + static_cast<int64_t>(queue_.dropped());
-  const int64_t missed = gaps - gaps_seen_;
-  gaps_seen_ = gaps;
+  const auto dropped = static_cast<int64_t>(queue_.dropped());
+  const int64_t missed = std::max<int64_t>(0, verdict.lost_before) + dropped - dropped_seen_;
+  dropped_seen_ = dropped;
   cv::Mat color, depth;
   try {
     color = decodeImage(fromMsg(msg.color));

@@ -103,9 +103,9 @@ class TrackerNode {
   WarningThrottle warnings_;  // a flood of bad frames cannot flood the log (both threads)
   int64_t received_reported_ = 0, dropped_reported_ = 0, lost_reported_ = 0, refused_reported_ = 0,
           answered_reported_ = 0;
-  FrameStream stream_;     // receive thread only
-  int64_t gaps_seen_ = 0;  // lost + dropped when the last frame was tracked
-  int64_t degraded_ = 0;   // OK poses published as DEGRADED
+  FrameStream stream_;        // receive thread only
+  int64_t dropped_seen_ = 0;  // dropped from the queue when the last frame was tracked
+  int64_t degraded_ = 0;      // OK poses published as DEGRADED
   DetectionPolicy policy_;
   DetectionBook book_;
   LastAnswer<slam_pose_t> last_pose_;  // published again for a repeated frame

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <bmp/rgbd_frame_t.hpp>
@@ -63,9 +64,9 @@ class FrameStream {
     bool new_camera = false;
     // The stream's camera has settle_frames accepted frames: what was built from it may be announced.
     bool camera_settled = false;
-    // Refused as damaged (checks, structure, camera), yet naming the seq and stamp of a frame accepted
-    // shortly before: another publisher's broken copy. Not to be answered: an answer under that frame's
-    // name would stand for the real frame's, which is coming or came. The reason says so.
+    // Refused (damaged, another camera, or out of order), yet naming the seq and stamp of a frame accepted
+    // shortly before: another publisher's copy, broken or replayed. Not to be answered: an answer under
+    // that frame's name would stand for the real frame's, which is coming or came. The reason says so.
     bool copies_accepted = false;
   };
   explicit FrameStream(FrameStreamLimits limits = {}) : limits_(limits), camera_(limits.settle_frames) {}
@@ -94,14 +95,16 @@ class FrameStream {
   Verdict pin(const rgbd_frame_t& msg, std::string note);
   // Frames missing before msg (counted once: a refused frame arrived, so it is refused, not lost).
   int64_t countGap(const rgbd_frame_t& msg);
-  // Refuses a frame that is unusable in itself, noting whether it names a recently accepted frame.
-  Verdict refuseDamaged(const rgbd_frame_t& msg, const std::string& why);
+  // Refuses a frame (damaged: unusable in itself; else out of order), noting whether it names a recently
+  // accepted frame: not to be answered then.
+  Verdict refuseNaming(const rgbd_frame_t& msg, const std::string& why, bool damaged);
 
   FrameStreamLimits limits_;
   CameraPin camera_;
   Position last_;                    // the last accepted frame
   std::deque<Position> recent_;      // the last remembered_frames accepted, oldest first
-  std::optional<int64_t> seen_seq_;  // the highest plausible seq received, accepted or refused
+  std::optional<int64_t> seen_seq_;  // the highest seq counted: accepted, or refused between accepted ones
+  std::set<int64_t> refused_ahead_;  // seqs refused beyond seen_seq_, not yet passed by an accepted frame
   Position candidate_;               // the newest out-of-order frame, which may be a restarted capture's
   // The last frame accepted jumped far ahead: where the stream was before it, and the frames counted as
   // lost for it.
