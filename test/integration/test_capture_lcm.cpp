@@ -18,11 +18,13 @@
 
 #include "bmp/common/child_process.hpp"
 #include "bmp/common/stamp.hpp"
+#include "bmp/common/tum_trajectory.hpp"
 #include "bmp/lcm/channels.hpp"
 #include "bmp/lcm/lcm_node.hpp"
 #include "capture/lcm/frame_message.hpp"
 #include "capture/tum_sequence.hpp"
 #include "integration_support.hpp"
+#include "run_command.hpp"
 
 namespace bmp {
 namespace {
@@ -133,6 +135,39 @@ TEST(CaptureOverLcm, Tum2LcmLogReplaysThroughLcmLogplayer) {
 }
 
 // Garbage from another publisher on the lockstep answer channel: warned about, counted, the run goes on.
+// --loop with --groundtruth-out (as bmp-run --frames N --loop K passes them): each pass's ground truth is
+// its own frames' stretch, shifted as the pass is, so the file runs forward in time and a frame pairs with
+// its own pass's pose. The whole dataset's ground truth once per pass made the passes overlap (found by
+// review: the file went back in time at each pass).
+TEST(CaptureOverLcm, LoopedGroundTruthRunsForwardOnePassAfterAnother) {
+  const fs::path dir = test::scratchDir("capture_loop_truth");
+  const std::string out = (dir / "groundtruth.txt").string();
+  const test::Outcome o = test::runCommand(
+      "capture_loop_truth",
+      {binPath("bmp-capture"), "--lcm-url", test::uniqueLcmUrl(9), "--dataset", test::bonnDir(), "--mode",
+       "fast", "--end", "20", "--loop", "3", "--groundtruth-out", out},
+      120);
+  ASSERT_EQ(o.status, 0) << o.output;
+  const Trajectory truth = readTumTrajectory(out);
+  const capture::SequenceIndex index = capture::indexSequence(test::bonnDir());
+  const double first = index.frames[0].rgb_stamp, last = index.frames[19].rgb_stamp;
+  const double period = (last - first) * 20.0 / 19.0;  // a pass: its frames and one mean interval
+  Trajectory one_pass;
+  for (const auto& p : index.groundtruth)
+    if (p.stamp >= first - 0.5 * period / 20 && p.stamp < first + period - 0.5 * period / 20)
+      one_pass.push_back(p);
+  ASSERT_GE(one_pass.size(), 15u);
+  ASSERT_EQ(truth.size(), 3 * one_pass.size()) << o.output;
+  for (std::size_t i = 1; i < truth.size(); ++i)
+    ASSERT_GT(truth[i].stamp, truth[i - 1].stamp) << "pose " << i;
+  for (int pass = 0; pass < 3; ++pass)
+    for (std::size_t i = 0; i < one_pass.size(); ++i) {
+      const auto& p = truth[pass * one_pass.size() + i];
+      EXPECT_NEAR(p.stamp, one_pass[i].stamp + pass * period, 1e-3);
+      EXPECT_TRUE(p.T_world_cam.isApprox(one_pass[i].T_world_cam, 1e-6));
+    }
+}
+
 TEST(CaptureOverLcm, MalformedMessagesOnAckChannelAreSkipped) {
   const fs::path dir = test::scratchDir("lcm_malformed");
   const std::string url = test::uniqueLcmUrl(3);

@@ -26,15 +26,6 @@ double tumPeriod(const SequenceIndex& index, const FrameSelection& selection) {
                     index.frames[static_cast<std::size_t>(last)].rgb_stamp, count);
 }
 
-// The dataset's ground truth, repeated for every --loop pass with that pass's stamp offset.
-Trajectory loopedTruth(const Trajectory& truth, int loops, double period_s) {
-  Trajectory out;
-  out.reserve(truth.size() * static_cast<std::size_t>(loops));
-  for (int k = 0; k < loops; ++k)
-    for (const auto& p : truth) out.push_back({p.stamp + period_s * k, p.T_world_cam});
-  return out;
-}
-
 }  // namespace
 
 CaptureNode::CaptureNode(ProcessContext& ctx, CaptureSettings settings)
@@ -45,15 +36,35 @@ CaptureNode::CaptureNode(ProcessContext& ctx, CaptureSettings settings)
     from_dataset_ = true;
     dataset_truth_ = tum->index().groundtruth;
     loop_period_s_ = tumPeriod(tum->index(), settings_.selection);
+    const int64_t frames =
+        selectedCount(settings_.selection, static_cast<int64_t>(tum->index().frames.size()));
+    if (frames > 0) {
+      pass_first_s_ = tum->index().frames[static_cast<std::size_t>(settings_.selection.start)].rgb_stamp;
+      frame_s_ = loop_period_s_ / static_cast<double>(frames);
+    }
   }
   if (settings_.loops > 1) {
     source_ = std::make_unique<LoopedSource>(
         std::move(source_),
-        [this] { return openFrameSource(settings_, [this](const std::string& m) { warnSkip(m); }); },
+        [this] {
+          writeTruthPass(++truth_pass_);
+          return openFrameSource(settings_, [this](const std::string& m) { warnSkip(m); });
+        },
         settings_.loops, loop_period_s_);
     log::info("playing the source ", settings_.loops, " times as one stream",
               loop_period_s_ > 0 ? ", stamps offset " + std::to_string(loop_period_s_) + " s per pass" : "");
   }
+}
+
+void CaptureNode::writeTruthPass(int pass) {
+  if (!dataset_truth_out_) return;
+  const double shift = loop_period_s_ * pass;
+  const double from = pass_first_s_ - 0.5 * frame_s_, to = from + loop_period_s_;
+  for (const auto& p : dataset_truth_)
+    if (settings_.loops == 1 || (p.stamp >= from && p.stamp < to)) {
+      dataset_truth_out_->append({p.stamp + shift, p.T_world_cam});
+      ++truth_written_;
+    }
 }
 
 void CaptureNode::warnSkip(const std::string& message) {
@@ -78,9 +89,10 @@ int CaptureNode::run() {
     if (dataset_truth_.empty()) {
       log::warn("no ground truth for ", source_->name(), "; ", out, " not written");
     } else {
-      const Trajectory t = loopedTruth(dataset_truth_, settings_.loops, loop_period_s_);
-      writeTumTrajectory(out, t);
-      log::info("ground truth (", t.size(), " poses) written to ", out);
+      dataset_truth_out_.emplace(out,
+                                 "the dataset's ground truth, camera to world" +
+                                     std::string(settings_.loops > 1 ? ", each pass shifted as played" : ""));
+      writeTruthPass(0);
     }
   } else if (!out.empty()) {
     truth.emplace(out, "true camera poses of the frames played, camera to world");
@@ -90,6 +102,7 @@ int CaptureNode::run() {
       player.play(*source_, [&truth](const StampedPose& p) { truth ? truth->append(p) : void(); });
   warnSkipsLeftOut();
   if (truth) log::info("ground truth (", summary.groundtruth.size(), " poses) written to ", out);
+  if (dataset_truth_out_) log::info("ground truth (", truth_written_, " poses) written to ", out);
   return summary.published > 0 ? 0 : 1;
 }
 

@@ -30,6 +30,12 @@ class CaptureNode {
   // every image has the wrong size must not bury the log. The end's count has them all.
   void warnSkip(const std::string& message);
   void warnSkipsLeftOut();  // the count of skip warnings left out, if any
+  // A TUM folder's ground truth for pass `pass` into dataset_truth_out_: all of it for a single pass
+  // (evaluation against any subset); with --loop, each pass's own stretch (from half a frame before its
+  // first frame to half a frame before the next pass's), offset by the pass's stamp shift. Written as each
+  // pass starts: the whole file once per pass made the passes overlap (a frame could be paired with
+  // another pass's pose), and --loop 1000000 ran out of memory building it.
+  void writeTruthPass(int pass);
 
   ProcessContext& ctx_;
   CaptureSettings settings_;
@@ -38,6 +44,11 @@ class CaptureNode {
   bool from_dataset_ = false;
   Trajectory dataset_truth_;  // a TUM folder's ground truth, all of it
   double loop_period_s_ = 0;  // --loop: stamp offset per pass (0: measured by the looped source)
+  double pass_first_s_ = 0;   // a TUM pass's first frame's stamp
+  double frame_s_ = 0;        // a TUM pass's mean frame interval
+  std::optional<TumTrajectoryStream> dataset_truth_out_;
+  int64_t truth_written_ = 0;
+  int truth_pass_ = 0;  // the pass whose ground truth was written last
 };
 
 }  // namespace bmp::capture
