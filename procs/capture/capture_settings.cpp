@@ -70,7 +70,8 @@ void readPlayerOptions(const Config& section, const ArgParser& args, const Check
         "is empty, but mode lockstep needs at least one answer channel (capture.ack_channels or "
         "--ack-channels)");
   p.speed = overridden(section, args, "speed", "speed", p.speed);
-  check(p.speed > 0, "speed", "speed", "must be positive");
+  check(p.speed >= Pacer::kMinSpeed && p.speed <= Pacer::kMaxSpeed, "speed", "speed",
+        "must be 0.001 to 1000 (a thousandth of the recorded rate to a thousand times it)");
   p.lockstep_timeout_s = section.get<double>("lockstep_timeout_s", p.lockstep_timeout_s);
   check(p.lockstep_timeout_s > 0, "lockstep_timeout_s", "", "must be positive");
   p.lockstep_resend_factor = section.get<double>("lockstep_resend_factor", p.lockstep_resend_factor);

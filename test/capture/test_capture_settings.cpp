@@ -72,6 +72,8 @@ TEST(CaptureSettings, WrongFileValuesNameFileAndKey) {
   } cases[] = {
       {"capture:\n  speed: 0\n", "capture.speed"},
       {"capture:\n  speed: -1.5\n", "capture.speed"},
+      {"capture:\n  speed: 1.0e-300\n", "capture.speed"},
+      {"capture:\n  speed: 1.0e+9\n", "capture.speed"},
       {"capture:\n  lockstep_timeout_s: 0\n", "capture.lockstep_timeout_s"},
       {"capture:\n  progress_every_s: -1\n", "capture.progress_every_s"},
       {"capture:\n  wait_timeout_s: 0\n", "capture.wait_timeout_s"},

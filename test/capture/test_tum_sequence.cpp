@@ -359,5 +359,24 @@ TEST(Pacer, RealtimeFollowsStampsAndFastDoesNotWait) {
   EXPECT_THROW(parseRateMode("slow"), std::invalid_argument);
 }
 
+// A long wait (a stamp far ahead, a slow speed) is slept in slices with a call between them, which stops it:
+// one sleep to a stamp 1e10 s ahead hung capture, deaf to SIGINT (found by review). Speeds out of range
+// (1e-300 overflowed the clock) are refused.
+TEST(Pacer, ALongWaitIsSleptInSlicesAndCanBeStopped) {
+  Pacer pacer(RateMode::kRealtime, 1.0);
+  ASSERT_TRUE(pacer.waitUntilDue(0.0));
+  EXPECT_GT(pacer.waitFor(1e10), 1e9);
+  int calls = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_FALSE(pacer.waitUntilDue(1e10, [&] { return ++calls == 3; }));
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(calls, 3);
+  EXPECT_GE(waited, 0.25);  // three slices of 100 ms
+  EXPECT_LT(waited, 10.0);
+  EXPECT_THROW(Pacer(RateMode::kRealtime, 1e-300), std::invalid_argument);
+  EXPECT_THROW(Pacer(RateMode::kRealtime, 1e9), std::invalid_argument);
+  EXPECT_EQ(Pacer(RateMode::kFast, 1.0).waitFor(1e10), 0.0);
+}
+
 }  // namespace
 }  // namespace bmp::capture

@@ -24,8 +24,9 @@ TEST(LauncherUsage, BadOptionsAreRefusedBeforeAnythingStarts) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"--mode", "bogus"}, "--mode 'bogus'"},
       {{"--speed", "abc"}, "--speed must be a number"},
-      {{"--speed", "0"}, "--speed must be a number above 0, got '0'"},
-      {{"--speed", "-1"}, "--speed must be a number above 0, got '-1'"},
+      {{"--speed", "0"}, "--speed must be a number from 0.001 to 1000, got '0'"},
+      {{"--speed", "-1"}, "--speed must be a number from 0.001 to 1000, got '-1'"},
+      {{"--speed", "1e-300"}, "--speed must be a number from 0.001 to 1000, got '1e-300'"},
       {{"--loop", "0"}, "--loop must be an integer from 1 to 1000000, got '0'"},
       {{"--frames", "-5"}, "--frames must be an integer from 1 to 100000000, got '-5'"},
       {{"--frames", "0"}, "--frames must be an integer from 1 to 100000000, got '0'"},

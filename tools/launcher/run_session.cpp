@@ -21,6 +21,7 @@
 #include "bmp/lcm/lcm_node.hpp"
 #include "bmp/lcm/process.hpp"
 #include "capture/camera_selection.hpp"
+#include "capture/pacer.hpp"
 #include "capture/tum_sequence.hpp"
 #include "launcher/launch_plan.hpp"
 #include "launcher/output_relay.hpp"
@@ -97,7 +98,7 @@ RunRequest requestFromArgs(const ArgParser& args, const RunSettings& settings) {
   require(!args.given("mode") || isCaptureMode(request.mode), args, "mode",
           "must be lockstep, realtime or fast");
   request.speed = args.value("speed");
-  if (args.given("speed")) positiveNumber(args, "speed");
+  if (args.given("speed")) numberIn(args, "speed", capture::Pacer::kMinSpeed, capture::Pacer::kMaxSpeed);
   request.frames = args.given("frames") ? integerIn(args, "frames", 1, kMaxFrames) : -1;
   request.loops = args.value("loop");
   if (args.given("loop")) integerIn(args, "loop", 1, kMaxLoops);

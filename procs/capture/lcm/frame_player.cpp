@@ -17,6 +17,10 @@
 
 namespace bmp::capture {
 
+namespace {
+constexpr double kLongWaitS = 10.0;  // a wait for the next frame this long is said in the log
+}  // namespace
+
 FramePlayer::FramePlayer(LcmNode& lcm, StopSignal& stop, StatusReporter& status, PlayerOptions options)
     : lcm_(lcm), stop_(stop), status_(status), options_(std::move(options)) {
   if (options_.mode == RateMode::kLockstep) {
@@ -125,7 +129,16 @@ PlayerSummary FramePlayer::play(FrameSource& source,
   while (!stop_.requested()) {
     std::optional<CapturedFrame> frame = source.next();
     if (!frame) break;
-    pacer.waitUntilDue(frame->stamp);
+    // A long wait (a slow --speed, a gap in the stamps) is said, and slept with heartbeats and an ear for a
+    // stop: one sleep to a stamp 1e10 s ahead hung capture silently, deaf to Ctrl-C.
+    if (const double wait_s = pacer.waitFor(frame->stamp); wait_s > kLongWaitS)
+      log::warn("the next frame (stamp ", frame->stamp, ") is due in ", static_cast<int64_t>(wait_s),
+                " s at speed x", options_.speed, ": waiting (Ctrl-C stops)");
+    if (!pacer.waitUntilDue(frame->stamp, [this] {
+          status_.tick();
+          return stop_.requested();
+        }))
+      break;
     if (stop_.requested()) break;
     if (frame->T_world_cam_true) {
       summary.groundtruth.push_back({frame->stamp, *frame->T_world_cam_true});
