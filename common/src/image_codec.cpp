@@ -271,6 +271,10 @@ std::vector<uint8_t> readFileBytes(const std::string& path) {
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) throw ImageError(path + ": cannot read file size");
+  if (static_cast<std::uintmax_t>(size) > kMaxImageFileBytes)
+    throw ImageError(path + ": " + std::to_string(static_cast<std::uintmax_t>(size) >> 20) +
+                     " MiB, larger than any image read (" + std::to_string(kMaxImageFileBytes >> 20) +
+                     " MiB)");
   in.seekg(0, std::ios::beg);
   std::vector<uint8_t> bytes(static_cast<std::size_t>(size));
   if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))

@@ -1,7 +1,9 @@
 #include "capture/open_source.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
+#include "bmp/common/arg_parser.hpp"
 #include "bmp/common/log.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/selected_source.hpp"
@@ -48,7 +50,11 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
 
 std::unique_ptr<FrameSource> openFrameSource(const CaptureSettings& settings,
                                              std::function<void(const std::string&)> warn) {
-  return settings.dataset.empty() ? openSynthetic(settings) : openTumFolder(settings, std::move(warn));
+  try {
+    return settings.dataset.empty() ? openSynthetic(settings) : openTumFolder(settings, std::move(warn));
+  } catch (const std::invalid_argument& e) {  // the frame selection (--start past the end): a usage error
+    throw ArgError(std::string("bmp-capture: ") + e.what());
+  }
 }
 
 }  // namespace bmp::capture

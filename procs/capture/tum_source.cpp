@@ -17,8 +17,12 @@ TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSou
                                 " is past the end of " + index_.name + " (" +
                                 std::to_string(index_.frames.size()) + " associated frames)");
   cursor_ = options_.selection.start;
-  for (const auto& file : index_.missing_files)
-    if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + ": listed but does not exist");
+  for (const auto& file : index_.missing_files) {
+    std::error_code ec;
+    const char* why = std::filesystem::exists(file.path, ec) ? ": listed, but not a file (a folder?)"
+                                                             : ": listed but does not exist";
+    if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + why);
+  }
 }
 
 bool TumSource::inPlayedRange(double stamp) const {
@@ -57,7 +61,8 @@ void TumSource::skip(int64_t& counter, const std::string& reason) {
 bool TumSource::load(const std::string& path, bool is_depth, EncodedImage& out) {
   std::error_code unreadable;  // a symlink loop: missing, not an exception that ends the run
   if (!std::filesystem::is_regular_file(path, unreadable)) {
-    skip(skips_.missing_files, path + ": file does not exist");
+    const bool there = std::filesystem::exists(path, unreadable);
+    skip(skips_.missing_files, path + (there ? ": not a file (a folder?)" : ": file does not exist"));
     return false;
   }
   std::vector<uint8_t> bytes;

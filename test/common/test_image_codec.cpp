@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <opencv2/imgcodecs.hpp>
 
 #include "bmp/common/image_codec.hpp"
@@ -162,6 +164,25 @@ TEST(ImageCodec, OpenCvsOwnRefusalIsAnImageError) {
                      readFileBytes(test::sharedPath(kDepth))};
   setPngSize(depth.data, 70000, 70000);
   EXPECT_EQ(decodeError(depth).rfind("undecodable png data: OpenCV", 0), 0u) << decodeError(depth);
+}
+
+// A file far larger than any image (a 300 MB one listed in rgb.txt; 200 GB stopped capture with an unnamed
+// bad_alloc) is refused by its size, named, before anything is allocated for it.
+TEST(ImageCodec, AFileLargerThanAnyImageIsRefusedByItsSize) {
+  const std::string path = test::scratchDir("huge_image_file") / "huge.jpg";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.seekp(300LL << 20);  // sparse: no disk space taken
+    out.put('\0');
+  }
+  try {
+    readFileBytes(path);
+    FAIL() << "read";
+  } catch (const ImageError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": 300 MiB, larger than any image read (256 MiB)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

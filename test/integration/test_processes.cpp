@@ -108,12 +108,12 @@ TEST(Processes, NothingToPlayOrWriteIsSaidAndLeavesAnEarlierLogAsItWas) {
   EXPECT_EQ(test::readText(log), "an earlier log");
   const Outcome past = runCommand("tum2lcm_past_end", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
                                                        "--out", log, "--start", "5000", "--force"});
-  EXPECT_NE(past.status, 0) << past.output;
+  EXPECT_EQ(past.status, 2) << past.output;  // a usage error, as bmp-capture's (was 1)
   EXPECT_NE(past.output.find("--start 5000 is past the end of"), std::string::npos) << past.output;
   EXPECT_EQ(test::readText(log), "an earlier log");
   EXPECT_FALSE(fs::exists(log + ".partial"));
   for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
-           {"--channel", ""}, {"--max-diff", "-1"}, {"--every", "0"}}) {
+           {"--channel", ""}, {"--max-diff", "-1"}, {"--every", "0"}, {"--verify", "full"}}) {
     const Outcome bad = runCommand("tum2lcm_bad_option", {binPath("tum2lcm"), "--dataset", test::bonnDir(),
                                                           "--out", log, "--force", option, value});
     EXPECT_EQ(bad.status, 2) << option << ": " << bad.output;
@@ -123,8 +123,26 @@ TEST(Processes, NothingToPlayOrWriteIsSaidAndLeavesAnEarlierLogAsItWas) {
   const Outcome capture = runCommand(
       "capture_past_end",
       {binPath("bmp-capture"), "--dataset", test::bonnDir(), "--start", "5000", "--lcm-url", "memq://"});
-  EXPECT_EQ(capture.status, 1) << capture.output;
+  EXPECT_EQ(capture.status, 2) << capture.output;
   EXPECT_NE(capture.output.find("--start 5000 is past the end of"), std::string::npos) << capture.output;
+  // A link planted where tum2lcm writes its partial log: the link goes, the file it named is untouched (it
+  // was overwritten with the log). A folder as --out is refused before converting (it failed at the end).
+  const std::string other = (dir / "other.txt").string();
+  std::ofstream(other) << "not to be overwritten";
+  fs::create_symlink(other, log + ".partial");
+  const Outcome linked =
+      runCommand("tum2lcm_linked_partial",
+                 {binPath("tum2lcm"), "--dataset", test::bonnDir(), "--out", log, "--force", "--end", "3"});
+  EXPECT_EQ(linked.status, 0) << linked.output;
+  EXPECT_EQ(test::readText(other), "not to be overwritten");
+  EXPECT_GT(fs::file_size(log), 1000u);
+  EXPECT_FALSE(fs::is_symlink(log));
+  fs::create_directories(dir / "a_folder");
+  const Outcome folder =
+      runCommand("tum2lcm_folder_out", {binPath("tum2lcm"), "--dataset", test::bonnDir(), "--out",
+                                        (dir / "a_folder").string(), "--force", "--end", "3"});
+  EXPECT_EQ(folder.status, 2) << folder.output;
+  EXPECT_NE(folder.output.find("is a folder; give a file name"), std::string::npos) << folder.output;
   // A camera of another size: every frame is skipped, but only the first few are named one by one (the end's
   // count has them all), not a warning per frame.
   std::ofstream(dir / "small.yaml") << "camera: {width: 320, height: 240, fx: 271.4, fy: 271.3, cx: 157.8, "

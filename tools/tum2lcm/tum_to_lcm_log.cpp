@@ -46,6 +46,9 @@ int convertTumToLcmLog(const ArgParser& args) {
   std::error_code ec;
   if (!args.flag("force") && std::filesystem::exists(std::filesystem::symlink_status(out_path, ec)))
     throw ArgError("tum2lcm: --out '" + out_path + "' exists; give --force to replace it");
+  // Found now, not after the whole conversion failed to rename onto it.
+  if (std::filesystem::is_directory(std::filesystem::symlink_status(out_path, ec)))
+    throw ArgError("tum2lcm: --out '" + out_path + "' is a folder; give a file name");
   const std::string channel = args.value("channel");
   if (channel.empty()) throw ArgError("tum2lcm: --channel must name a channel");
   TumSourceOptions options;
@@ -54,17 +57,31 @@ int convertTumToLcmLog(const ArgParser& args) {
                        integerIn(args, "every", 1, kMaxFrameNumber)};
   if (options.selection.end >= 0 && options.selection.end <= options.selection.start)
     throw ArgError("tum2lcm: --end must be past --start (it is one past the last frame written)");
-  options.verify = parseVerifyMode(args.value("verify"));
+  try {
+    options.verify = parseVerifyMode(args.value("verify"));
+  } catch (const std::invalid_argument& e) {
+    throw ArgError(std::string("tum2lcm: --verify: ") + e.what());
+  }
   options.warn = [](const std::string& m) { log::warn(m); };
   const double max_diff = positiveNumber(args, "max-diff");
   // The folder first: a missing or empty one is said as such, not as an unknown camera.
   SequenceIndex index = indexSequence(dir, max_diff);
-  const CameraIntrinsics camera =
-      selectCamera(dir, args.value("camera"), configDir() + "/cameras").intrinsics;
+  const SequenceCamera selected = selectCamera(dir, args.value("camera"), configDir() + "/cameras");
+  const CameraIntrinsics& camera = selected.intrinsics;
+  // What bmp-capture says of the folder, said here too: the log is played later, without it.
+  log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
+  if (!index.groundtruth_problem.empty()) log::warn(index.groundtruth_problem);
+  for (const auto& problem : index.list_problems) log::warn(problem);
+  if (options.selection.start >= static_cast<int64_t>(index.frames.size()))
+    throw ArgError("tum2lcm: --start " + std::to_string(options.selection.start) + " is past the end of " +
+                   dir + " (" + std::to_string(index.frames.size()) + " associated frames)");
   TumSource source(std::move(index), camera, options);
 
   // Written beside --out and renamed when whole: a run that fails leaves a log already there as it was.
   const std::string partial = out_path + ".partial";
+  // One left by a killed run, or a link planted there, is removed (the link itself, not what it names):
+  // opened as it was, a link to another file had that file overwritten with the log.
+  std::filesystem::remove(partial, ec);
   std::vector<uint8_t> buffer;
   int64_t seq = 0;
   try {

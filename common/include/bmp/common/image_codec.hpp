@@ -50,7 +50,12 @@ PixelFormat pixelFormatOf(const cv::Mat& mat);
 const char* toString(ImageEncoding encoding);
 const char* toString(PixelFormat format);
 
-// Whole file as bytes; throws ImageError naming the file when it cannot be read.
+// The largest image file read: a 16 MP 16-bit PNG stored uncompressed is 32 MiB. A larger file is not a
+// frame's image (a 200 GB file listed in rgb.txt stopped capture with an unnamed bad_alloc).
+inline constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{256} << 20;
+
+// Whole file as bytes; throws ImageError naming the file when it cannot be read or is larger than
+// kMaxImageFileBytes.
 std::vector<uint8_t> readFileBytes(const std::string& path);
 
 }  // namespace bmp
