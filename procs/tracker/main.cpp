@@ -37,6 +37,6 @@ int main(int argc, char** argv) {
   return bmp::runProcess(argc, argv,
                          {"bmp-tracker",
                           "ORB-SLAM-style RGB-D tracking and local mapping: subscribes RGBD_FRAME, publishes "
-                          "SLAM_POSE for every frame, SLAM_KEYFRAME and SLAM_KEYFRAME_POSES.",
+                          "SLAM_POSE for every frame it takes, SLAM_KEYFRAME and SLAM_KEYFRAME_POSES.",
                           "tracker.yaml", addTrackerOptions, run});
 }

@@ -11,17 +11,20 @@ void addTrackerOptions(ArgParser& args) {
   args.addOption("keyframe-trajectory", "FILE", "the keyframe poses (TUM format), likewise");
   args.addOption(
       "frame-log", "FILE",
-      "one tab-separated line per frame: state, inliers of the first pose and after the local map, "
-      "where the first pose came from, frames missed before it, boxes own/stale/none, times");
+      "one tab-separated line per frame tracked (not for a frame skipped or refused): state, inliers of the "
+      "first pose and after the local map, where the first pose came from, frames missed before it, boxes "
+      "own/stale/none, times");
   args.addOption("frame-policy", "every|latest",
                  "every: reproducible (wait for each frame's boxes, map inline; lockstep runs); latest: real "
                  "time, never wait",
                  "latest");
   args.addOption("dynamic-mode", "MODE", "override tracker.dynamic.mode: none|boxes|paper|depth|geometric");
   args.addOption("idle-exit", "SECONDS",
-                 "exit once no frame arrived for this long after the first (0: never)", "0");
+                 "exit once no frame arrived for this long after the first received (0: never)", "0");
   args.addEpilog(
-      "Subscribes RGBD_FRAME; publishes SLAM_POSE for every frame, SLAM_KEYFRAME for each new keyframe\n"
+      "Subscribes RGBD_FRAME; publishes SLAM_POSE for every frame it takes (skipped and refused ones too;\n"
+      "with --frame-policy latest, frames dropped while it was busy get none), SLAM_KEYFRAME for each new "
+      "keyframe\n"
       "(colour, depth, dynamic mask) and SLAM_KEYFRAME_POSES after local bundle adjustment; uses DETECTIONS\n"
       "for the dynamic stage.\n"
       "Example:\n"

@@ -566,6 +566,21 @@ TEST(TrackerProcess, AtExitKeyframesOfAnUnsettledCameraAreNotSent) {
       std::string::npos);
 }
 
+// --idle-exit counts from the last frame received, taken or refused: with only refused frames (no map ever
+// started) it never fired (found by review).
+TEST(TrackerProcess, IdleExitAlsoAfterOnlyRefusedFrames) {
+  TrackerUnderTest t("tracker_idle_refused", 15, {"--idle-exit", "1"});
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  rgbd_frame_t bad = t.frame(0);
+  bad.camera.fx = std::nan("");
+  ASSERT_TRUE(t.publishAndWait(bad));
+  EXPECT_EQ(static_cast<int>(t.poses.back().state), static_cast<int>(slam_pose_t::STATE_SKIPPED));
+  const std::optional<int> status = t.child().wait(20);
+  ASSERT_TRUE(status.has_value()) << "still running; log " << t.logPath();
+  EXPECT_EQ(*status, 0);
+  EXPECT_NE(test::readText(t.logPath()).find("no frame for 1 s: finishing"), std::string::npos);
+}
+
 // A capture restarted (seq from 0 again, after frames up to seq 2009): answers are judged "far ahead"
 // against the new stream. Against the old stream's seq (the largest seen, as before), a forged answer for
 // seq 1500 was taken, and with others like it would have pushed the real answers out of the book.

@@ -179,15 +179,19 @@ void TrackerNode::syncStatus() {
 }
 
 void TrackerNode::run(double idle_exit_s) {
-  Stopwatch idle;
+  Stopwatch idle;  // since a frame last arrived (taken or refused: a stream of refused frames is no idle)
+  int64_t received_before = 0;
   while (!ctx_.stop.requested()) {
     std::optional<Queued> msg = queue_.popFor(std::chrono::milliseconds(held_.empty() ? 100 : 10));
     syncStatus();
     if (tracker_) releaseHeldKeyframes(false);
+    if (const int64_t received = received_.load(); msg || received != received_before) {
+      received_before = received;
+      idle.restart();
+    }
     if (msg) {
       process(*msg);
-      idle.restart();
-    } else if (idle_exit_s > 0 && tracker_ && idle.elapsedMs() > idle_exit_s * 1000.0) {
+    } else if (idle_exit_s > 0 && received_before > 0 && idle.elapsedMs() > idle_exit_s * 1000.0) {
       log::info("no frame for ", idle_exit_s, " s: finishing");
       break;
     }
