@@ -449,6 +449,26 @@ detections_t answerFor(const rgbd_frame_t& frame, bool person) {
   return d;
 }
 
+// Lockstep with no detector on the bus waits for boxes once, then tracks without them until one is heard.
+// A stray answer that is refused (another stamp for a frame) is no detector heard: counted as heard, it put
+// the 3 s wait back on every frame (found by review).
+TEST(TrackerProcess, ARefusedStrayAnswerDoesNotPutTheLockstepWaitBack) {
+  TrackerUnderTest t("tracker_stray_answer", 0, {"--frame-policy", "every"});
+  ASSERT_TRUE(t.ready()) << "no heartbeat, or it exited; log " << t.logPath();
+  const rgbd_frame_t first = t.frame(0);
+  ASSERT_TRUE(t.publishAndWait(first));  // waits detections_wait_ms (3 s) once, then warns
+  detections_t stray = answerFor(first, false);
+  stray.utime += 1;  // not the frame's stamp: refused
+  t.publish("DETECTIONS", stray);
+  t.pumpUntil([] { return false; }, 0.3);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 1; i <= 3; ++i) ASSERT_TRUE(t.playAndWait(i)) << "no pose for " << i;
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(took, 6.0) << "three frames waited for boxes again (3 s each)";
+  EXPECT_EQ(t.child().stop(20.0), 0);
+  EXPECT_NE(test::readText(t.logPath()).find("answer for frame 0 has stamp"), std::string::npos);
+}
+
 // Lockstep capture sends a frame again when its pose is slow to come, and the detector answers it again.
 // The first keyframe, held until the camera settles, took its boxes when it was tracked: the answer again
 // is no news. It was taken as the keyframe's late boxes, applied a second time (runs differed).
