@@ -216,8 +216,10 @@ bool Mapper::maintain(double now_s) {
 
 bool Mapper::finishRebuild() {
   if (!rebuild_) return false;
-  std::unique_ptr<OccupancyMap> octree = rebuild_->take();
-  rebuild_.reset();
+  // Released first: a rebuild that threw (out of memory) is reported by the caller, the octree stays stale
+  // and the next maintain() starts another, instead of asking this one again and again.
+  const std::unique_ptr<BackgroundRebuild> job = std::move(rebuild_);
+  std::unique_ptr<OccupancyMap> octree = job->take();
   for (const auto& cast : cast_since_rebuild_) castInto(*octree, cast);
   rebuilt(std::move(*octree));
   return true;
