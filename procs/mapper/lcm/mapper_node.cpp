@@ -56,10 +56,18 @@ void MapperNode::stopReceiving() {
 }
 
 void MapperNode::dispatch(const MapperInbox::Message& message) {
-  if (const auto* kf = std::get_if<keyframe_t>(&message))
-    onKeyframe(*kf);
-  else
-    onPoses(std::get<keyframe_poses_t>(message));
+  // As LCM's handler did before the inbox: whatever one message leads to (a keyframe too large to allocate)
+  // is that message's refusal, never the mapper's end.
+  const auto* kf = std::get_if<keyframe_t>(&message);
+  try {
+    if (kf != nullptr)
+      onKeyframe(*kf);
+    else
+      onPoses(std::get<keyframe_poses_t>(message));
+  } catch (const std::exception& e) {
+    refuse((kf != nullptr ? "keyframe " + std::to_string(kf->id) : std::string("pose update")) + ": " +
+           e.what() + "; skipped");
+  }
 }
 
 void MapperNode::reportRefusedByInbox() {
@@ -105,11 +113,26 @@ void MapperNode::run() {
     }
     ctx_.status.tick();
   }
-  // What came before the stop is mapped before the map is saved.
+  // What came before the stop is mapped before the map is saved, for at most process.stop_drain_s: the
+  // launcher kills a process that takes too long to stop, and the map would be lost with it.
   stopReceiving();
-  std::size_t late = 0;
-  for (auto message = inbox_.tryPop(); message; message = inbox_.tryPop(), ++late) dispatch(*message);
+  const Stopwatch draining;
+  std::size_t late = 0, left = 0;
+  for (auto message = inbox_.tryPop(); message; message = inbox_.tryPop()) {
+    if (draining.elapsedMs() < process_.stop_drain_s * 1000.0) {
+      dispatch(*message);
+      ++late;
+    } else {
+      ++left;
+    }
+  }
   if (late > 0) log::info(late, " message(s) that waited at the stop mapped");
+  if (left > 0) {
+    log::warn(left, " message(s) that waited at the stop not mapped: process.stop_drain_s (",
+              process_.stop_drain_s, " s) passed");
+    ctx_.status.received(static_cast<int64_t>(left));
+    ctx_.status.dropped(static_cast<int64_t>(left));
+  }
   reportRefusedByInbox();
   log::info("mapped ", mapper_->keyframeCount(), " keyframes (+", mapper_->mergedCount(),
             " revisits merged); integration ", mapper_->integrationTimes().summary());

@@ -18,6 +18,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   s.max_cloud_points = c.get<int>("max_cloud_points", s.max_cloud_points);
   s.camera_settle_keyframes = c.get<int>("camera_settle_keyframes", s.camera_settle_keyframes);
   s.inbox_mib = c.get<double>("inbox_mib", s.inbox_mib);
+  s.stop_drain_s = c.get<double>("stop_drain_s", s.stop_drain_s);
   for (const char* key :
        {"keyframe_channel", "keyframe_poses_channel", "octomap_channel", "grid_channel", "cloud_channel"})
     c.check(!c.get<std::string>(key, "x").empty(), key, "must not be empty");
@@ -31,6 +32,7 @@ MapperProcessSettings processSettingsFromConfig(const Config& c) {
   c.check(s.camera_settle_keyframes >= 1, "camera_settle_keyframes", "must be at least 1");
   c.check(std::isfinite(s.inbox_mib) && s.inbox_mib >= 1 && s.inbox_mib <= 16384, "inbox_mib",
           "must be in 1..16384");
+  c.check(std::isfinite(s.stop_drain_s) && s.stop_drain_s >= 0, "stop_drain_s", "must not be negative");
   return s;
 }
 

@@ -25,6 +25,9 @@ struct MapperProcessSettings {
   int camera_settle_keyframes = 3;
   // Keyframes and pose updates waiting for the loop (mapper_inbox.hpp), in MiB: about 45 VGA keyframes.
   double inbox_mib = 64.0;
+  // At a stop, messages still in the inbox are mapped for at most this long, then the map is saved (the
+  // launcher kills a process that takes more than its stop_timeout_s, 15 s, to stop).
+  double stop_drain_s = 5.0;
 };
 
 MapperProcessSettings processSettingsFromConfig(const Config& section);
