@@ -32,10 +32,7 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
   // The folder first: a missing folder must be reported as such, not as an unknown camera.
   SequenceIndex index = indexSequence(dir, settings.max_association_difference_s);
   const SequenceCamera selected = selectCamera(dir, settings.camera, settings.cameras_dir);
-  log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
-  if (!index.groundtruth_problem.empty())
-    log::warn(index.groundtruth_problem, "; playing without ground truth");
-  for (const auto& problem : index.list_problems) log::warn(problem);
+  logSequenceFindings(index, selected);
   TumSourceOptions options;
   options.selection = settings.selection;
   options.verify = settings.verify;
@@ -47,6 +44,13 @@ std::unique_ptr<FrameSource> openTumFolder(const CaptureSettings& settings,
 }
 
 }  // namespace
+
+void logSequenceFindings(const SequenceIndex& index, const SequenceCamera& camera) {
+  log::info("camera from ", camera.file, " (", camera.chosen_by, ")");
+  if (!index.groundtruth_problem.empty())
+    log::warn(index.groundtruth_problem, "; going on without ground truth");
+  for (const auto& problem : index.list_problems) log::warn(problem);
+}
 
 std::unique_ptr<FrameSource> openFrameSource(const CaptureSettings& settings,
                                              std::function<void(const std::string&)> warn) {

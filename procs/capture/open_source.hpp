@@ -5,8 +5,10 @@
 #include <memory>
 #include <string>
 
+#include "capture/camera_selection.hpp"
 #include "capture/capture_settings.hpp"
 #include "capture/frame_source.hpp"
+#include "capture/tum_sequence.hpp"
 
 namespace bmp::capture {
 
@@ -14,5 +16,9 @@ namespace bmp::capture {
 // played (SequenceError, ConfigError). warn receives one line per frame the source skips.
 std::unique_ptr<FrameSource> openFrameSource(const CaptureSettings& settings,
                                              std::function<void(const std::string&)> warn);
+
+// Logs what a TUM folder's reading found, before any frame: the camera file and why it was chosen, a ground
+// truth that cannot be used, problems in its lists. bmp-capture and tum2lcm say the same.
+void logSequenceFindings(const SequenceIndex& index, const SequenceCamera& camera);
 
 }  // namespace bmp::capture

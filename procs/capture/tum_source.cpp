@@ -3,9 +3,23 @@
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 
 namespace bmp::capture {
+
+namespace {
+
+// Why a path that is no regular file cannot be read, for a skip line: a folder (or the like) there, or
+// nothing. listed: said of a file the lists name, before any frame.
+std::string absence(const std::string& path, bool listed) {
+  std::error_code unreadable;  // a symlink loop: nothing there to read
+  if (std::filesystem::exists(path, unreadable))
+    return listed ? ": listed, but not a file (a folder?)" : ": not a file (a folder?)";
+  return listed ? ": listed but does not exist" : ": file does not exist";
+}
+
+}  // namespace
 
 TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSourceOptions options)
     : index_(std::move(index)), camera_(camera), options_(std::move(options)) {
@@ -17,12 +31,8 @@ TumSource::TumSource(SequenceIndex index, const CameraIntrinsics& camera, TumSou
                                 " is past the end of " + index_.name + " (" +
                                 std::to_string(index_.frames.size()) + " associated frames)");
   cursor_ = options_.selection.start;
-  for (const auto& file : index_.missing_files) {
-    std::error_code ec;
-    const char* why = std::filesystem::exists(file.path, ec) ? ": listed, but not a file (a folder?)"
-                                                             : ": listed but does not exist";
-    if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + why);
-  }
+  for (const auto& file : index_.missing_files)
+    if (inPlayedRange(file.stamp)) skip(skips_.missing_files, file.path + absence(file.path, true));
 }
 
 bool TumSource::inPlayedRange(double stamp) const {
@@ -61,8 +71,7 @@ void TumSource::skip(int64_t& counter, const std::string& reason) {
 bool TumSource::load(const std::string& path, bool is_depth, EncodedImage& out) {
   std::error_code unreadable;  // a symlink loop: missing, not an exception that ends the run
   if (!std::filesystem::is_regular_file(path, unreadable)) {
-    const bool there = std::filesystem::exists(path, unreadable);
-    skip(skips_.missing_files, path + (there ? ": not a file (a folder?)" : ": file does not exist"));
+    skip(skips_.missing_files, path + absence(path, false));
     return false;
   }
   std::vector<uint8_t> bytes;

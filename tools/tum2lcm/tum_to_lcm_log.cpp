@@ -16,6 +16,7 @@
 #include "bmp/common/log.hpp"
 #include "capture/camera_selection.hpp"
 #include "capture/lcm/frame_message.hpp"
+#include "capture/open_source.hpp"
 #include "capture/tum_source.hpp"
 
 namespace bmp::capture {
@@ -68,14 +69,14 @@ int convertTumToLcmLog(const ArgParser& args) {
   SequenceIndex index = indexSequence(dir, max_diff);
   const SequenceCamera selected = selectCamera(dir, args.value("camera"), configDir() + "/cameras");
   const CameraIntrinsics& camera = selected.intrinsics;
-  // What bmp-capture says of the folder, said here too: the log is played later, without it.
-  log::info("camera from ", selected.file, " (", selected.chosen_by, ")");
-  if (!index.groundtruth_problem.empty()) log::warn(index.groundtruth_problem);
-  for (const auto& problem : index.list_problems) log::warn(problem);
-  if (options.selection.start >= static_cast<int64_t>(index.frames.size()))
-    throw ArgError("tum2lcm: --start " + std::to_string(options.selection.start) + " is past the end of " +
-                   dir + " (" + std::to_string(index.frames.size()) + " associated frames)");
-  TumSource source(std::move(index), camera, options);
+  logSequenceFindings(index, selected);  // as bmp-capture: the log is played later, without the folder
+  TumSource source = [&] {
+    try {
+      return TumSource(std::move(index), camera, options);
+    } catch (const std::invalid_argument& e) {  // the frame selection (--start past the end): a usage error
+      throw ArgError(std::string("tum2lcm: ") + e.what());
+    }
+  }();
 
   // Written beside --out and renamed when whole: a run that fails leaves a log already there as it was.
   const std::string partial = out_path + ".partial";
